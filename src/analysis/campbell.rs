@@ -1,0 +1,114 @@
+//! Campbell diagram and decay-rate plot: every rotor branch over a sweep of spin speeds, the
+//! forward critical speeds and the threshold of instability.
+
+use super::AnalysisError;
+use super::poles::Whirl;
+use super::stability::{Threshold, sweep, threshold};
+use super::tracking::track;
+use crate::damping::DampedModel;
+use crate::linalg::c64;
+
+/// One branch over the sweep.
+#[derive(Debug, Clone)]
+pub struct Branch {
+    /// 1 = lowest |frequency| at its first speed, per whirl direction.
+    pub mode: usize,
+    pub whirl: Whirl,
+    /// The pole at each speed; `None` where the model defines none for this mode.
+    pub poles: Vec<Option<c64>>,
+}
+
+#[derive(Debug, Clone)]
+pub struct CampbellResult {
+    pub speeds: Vec<f64>,
+    pub branches: Vec<Branch>,
+    /// Forward branches crossing `omega = Omega`, interpolated, ascending.
+    pub critical_speeds: Vec<f64>,
+    pub threshold: Option<Threshold>,
+}
+
+pub fn campbell(model: &DampedModel, speeds: &[f64]) -> Result<CampbellResult, AnalysisError> {
+    let sets = sweep(model, speeds)?;
+    let tracks = track(&sets, 2 * model.dofs());
+    let mut branches: Vec<Branch> = tracks
+        .into_iter()
+        .filter_map(|t| {
+            let defined: Vec<c64> = t.values.iter().flatten().cloned().collect();
+            let first = *defined.first()?;
+            let forward = defined.iter().filter(|s| s.im >= 0.0).count();
+            let whirl = if 2 * forward >= defined.len() {
+                Whirl::Forward
+            } else {
+                Whirl::Backward
+            };
+            Some((first.im.abs(), whirl, t.values))
+        })
+        .collect::<Vec<_>>()
+        .into_iter()
+        .map(|(_, whirl, poles)| Branch {
+            mode: 0,
+            whirl,
+            poles,
+        })
+        .collect();
+    number_modes(&mut branches);
+    let critical_speeds = critical_speeds(speeds, &branches);
+    let threshold = threshold(model, &sets)?;
+    Ok(CampbellResult {
+        speeds: speeds.to_vec(),
+        branches,
+        critical_speeds,
+        threshold,
+    })
+}
+
+/// Modes numbered per whirl by |frequency| at the branch's first defined speed; branches
+/// ordered by mode, forward before backward.
+fn number_modes(branches: &mut [Branch]) {
+    let key = |b: &Branch| {
+        let first = b.poles.iter().position(|p| p.is_some()).unwrap_or(0);
+        (first, b.poles[first].map_or(0.0, |s| s.im.abs()))
+    };
+    for whirl in [Whirl::Forward, Whirl::Backward] {
+        let mut idx: Vec<usize> = (0..branches.len())
+            .filter(|&i| branches[i].whirl == whirl)
+            .collect();
+        idx.sort_by(|&a, &b| {
+            let (fa, wa) = key(&branches[a]);
+            let (fb, wb) = key(&branches[b]);
+            fa.cmp(&fb).then(wa.total_cmp(&wb))
+        });
+        for (k, i) in idx.into_iter().enumerate() {
+            branches[i].mode = k + 1;
+        }
+    }
+    branches.sort_by_key(|b| (b.mode, b.whirl != Whirl::Forward));
+}
+
+/// Where `omega - Omega` changes sign along a forward branch (across undefined gaps too).
+fn critical_speeds(speeds: &[f64], branches: &[Branch]) -> Vec<f64> {
+    let mut out = vec![];
+    for b in branches.iter().filter(|b| b.whirl == Whirl::Forward) {
+        let pts: Vec<(f64, f64)> = speeds
+            .iter()
+            .zip(&b.poles)
+            .filter_map(|(&w, p)| p.map(|s| (w, s.im - w)))
+            .collect();
+        for pair in pts.windows(2) {
+            let ((w0, f0), (w1, f1)) = (pair[0], pair[1]);
+            if f0 == 0.0 {
+                out.push(w0);
+            } else if f0 * f1 < 0.0 {
+                out.push(w0 + (w1 - w0) * f0 / (f0 - f1));
+            }
+        }
+        if let Some(&(w, f)) = pts.last()
+            && f == 0.0
+        {
+            out.push(w);
+        }
+    }
+    out.sort_by(f64::total_cmp);
+    out.dedup();
+    out
+}

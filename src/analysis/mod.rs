@@ -1,0 +1,41 @@
+//! Analyses on a damped model: poles at one speed (`modal`), sweeps with branch tracking
+//! (`campbell`), and the threshold of instability (`stability`).
+
+pub mod campbell;
+pub mod modal;
+pub mod poles;
+pub mod stability;
+pub mod tracking;
+
+use crate::damping::DampingError;
+use crate::linalg::LinalgError;
+
+/// Why an analysis could not be carried out on a (valid) model.
+#[derive(Debug, Clone, PartialEq)]
+pub enum AnalysisError {
+    Damping(DampingError),
+    Linalg(LinalgError),
+}
+
+impl std::fmt::Display for AnalysisError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Damping(e) => write!(f, "{e}"),
+            Self::Linalg(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+impl std::error::Error for AnalysisError {}
+
+impl From<DampingError> for AnalysisError {
+    fn from(e: DampingError) -> Self {
+        Self::Damping(e)
+    }
+}
+
+impl From<LinalgError> for AnalysisError {
+    fn from(e: LinalgError) -> Self {
+        Self::Linalg(e)
+    }
+}

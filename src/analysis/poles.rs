@@ -1,0 +1,209 @@
+//! Poles of a damped model at one spin speed, classified.
+//!
+//! A model with `n` complex degrees of freedom has exactly `2n` rotor poles; the nonviscous
+//! model adds one internal pole per branch. Internal poles are told apart by where their
+//! elastic energy lies (in the branch springs, not in the rotor), which does not depend on the
+//! units of the internal coordinates. Rotor poles whirl `forward` (`omega >= 0`) or `backward`.
+
+use crate::damping::DampedModel;
+use crate::damping::state::StateModel;
+use crate::linalg::{self, LinalgError, c64};
+
+/// Direction of whirl of a pole.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Whirl {
+    Forward,
+    Backward,
+    Internal,
+}
+
+/// A pole `s` and its mode shape on the physical coordinates (unit norm).
+#[derive(Debug, Clone)]
+pub struct Pole {
+    pub s: c64,
+    pub whirl: Whirl,
+    pub shape: Vec<c64>,
+}
+
+impl Pole {
+    pub fn decay_rate(&self) -> f64 {
+        self.s.re
+    }
+    pub fn frequency(&self) -> f64 {
+        self.s.im
+    }
+    /// `-sigma / |s|` (0 for a pole at the origin).
+    pub fn damping_ratio(&self) -> f64 {
+        let m = self.s.norm();
+        if m > 0.0 { -self.s.re / m } else { 0.0 }
+    }
+    /// `-2 pi sigma / |omega|`, `None` for a pole that does not oscillate.
+    pub fn log_decrement(&self) -> Option<f64> {
+        let w = self.s.im.abs();
+        (w > 1e-12 * self.s.norm() && w > 0.0)
+            .then(|| -2.0 * std::f64::consts::PI * self.s.re / w)
+    }
+}
+
+/// Relative margin below which a pole counts as not unstable: `sigma > 1e-10 |s|`. It keeps an
+/// undamped (conservative) rotor, whose decay rates are zero up to round-off, from reporting a
+/// threshold of instability.
+pub const INSTABILITY_MARGIN: f64 = 1e-10;
+
+/// The poles of a model at one speed.
+#[derive(Debug, Clone)]
+pub struct PoleSet {
+    pub speed: f64,
+    /// Rotor poles by increasing |frequency| (backward first on ties).
+    pub rotor: Vec<Pole>,
+    /// Internal poles by increasing decay rate (most damped first).
+    pub internal: Vec<Pole>,
+    /// Rotor poles the model should have: `2n`.
+    pub expected_rotor: usize,
+}
+
+impl PoleSet {
+    /// Rotor poles the model leaves undefined at this speed (hysteretic model only).
+    pub fn missing(&self) -> usize {
+        self.expected_rotor.saturating_sub(self.rotor.len())
+    }
+
+    /// `max (sigma - margin |s|)` over all poles: > 0 iff some pole is unstable.
+    pub fn growth(&self) -> f64 {
+        self.all()
+            .map(|p| p.s.re - INSTABILITY_MARGIN * p.s.norm())
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
+
+    /// The pole with the largest growth.
+    pub fn least_stable(&self) -> Option<&Pole> {
+        self.all().max_by(|a, b| {
+            (a.s.re - INSTABILITY_MARGIN * a.s.norm())
+                .total_cmp(&(b.s.re - INSTABILITY_MARGIN * b.s.norm()))
+        })
+    }
+
+    /// Mode number of a pole: its rank by |frequency| among the poles of its whirl, from 1.
+    pub fn mode_number(&self, pole: &Pole) -> usize {
+        let list = if pole.whirl == Whirl::Internal {
+            &self.internal
+        } else {
+            &self.rotor
+        };
+        list.iter()
+            .filter(|p| p.whirl == pole.whirl && p.s.im.abs() < pole.s.im.abs())
+            .count()
+            + 1
+    }
+
+    pub fn all(&self) -> impl Iterator<Item = &Pole> {
+        self.rotor.iter().chain(self.internal.iter())
+    }
+}
+
+/// Poles of `model` at spin speed `speed`.
+pub fn poles_at(model: &DampedModel, speed: f64) -> Result<PoleSet, LinalgError> {
+    let (mut rotor, mut internal) = (vec![], vec![]);
+    let n = model.dofs();
+    match model {
+        DampedModel::Linear(m) => {
+            let e = linalg::eigen(&m.at(speed))?;
+            let mut scored: Vec<(f64, Pole)> = (0..e.values.len())
+                .map(|j| {
+                    let (x, y) = split(m, &e.vectors, j);
+                    let fraction = m.rotor_energy_fraction(&x, &y);
+                    (fraction, rotor_pole(e.values[j], x))
+                })
+                .collect();
+            // Exactly 2n rotor poles: the 2n whose energy is most in the rotor.
+            scored.sort_by(|a, b| b.0.total_cmp(&a.0));
+            for (k, (_, mut p)) in scored.into_iter().enumerate() {
+                if k >= 2 * n {
+                    p.whirl = Whirl::Internal;
+                    internal.push(p);
+                } else {
+                    rotor.push(p);
+                }
+            }
+        }
+        DampedModel::Hysteretic(signed) => {
+            for sm in signed {
+                let e = linalg::eigen(&sm.model.at(speed))?;
+                for j in 0..e.values.len() {
+                    if sm.consistent(e.values[j], speed) {
+                        let (x, _) = split(&sm.model, &e.vectors, j);
+                        rotor.push(rotor_pole(e.values[j], x));
+                    }
+                }
+            }
+        }
+    }
+    rotor.sort_by(|a, b| {
+        a.s.im
+            .abs()
+            .total_cmp(&b.s.im.abs())
+            .then(a.s.im.total_cmp(&b.s.im))
+    });
+    internal.sort_by(|a, b| a.s.re.total_cmp(&b.s.re));
+    Ok(PoleSet {
+        speed,
+        rotor,
+        internal,
+        expected_rotor: 2 * n,
+    })
+}
+
+fn rotor_pole(s: c64, x: Vec<c64>) -> Pole {
+    Pole {
+        s,
+        whirl: if s.im >= 0.0 {
+            Whirl::Forward
+        } else {
+            Whirl::Backward
+        },
+        shape: normalise(x),
+    }
+}
+
+/// The displacement part `x` and internal part `y` of eigenvector `j` of a state `[v, x, y]`.
+fn split(m: &StateModel, vectors: &linalg::CMat, j: usize) -> (Vec<c64>, Vec<c64>) {
+    let n = m.n();
+    let x = (n..2 * n).map(|r| vectors[(r, j)]).collect();
+    let y = (2 * n..m.size()).map(|r| vectors[(r, j)]).collect();
+    (x, y)
+}
+
+/// Unit norm, largest component real and positive: a shape comparable across speeds.
+fn normalise(mut x: Vec<c64>) -> Vec<c64> {
+    let norm = x.iter().map(|v| v.norm_sqr()).sum::<f64>().sqrt();
+    let big = x
+        .iter()
+        .cloned()
+        .max_by(|a, b| a.norm().total_cmp(&b.norm()));
+    if let Some(big) = big
+        && norm > 0.0
+        && big.norm() > 0.0
+    {
+        let phase = big.conj() / big.norm();
+        for v in x.iter_mut() {
+            *v = *v * phase / norm;
+        }
+    }
+    x
+}
+
+/// Modal assurance criterion `|a^H b|^2 / (|a|^2 |b|^2)`, in [0, 1].
+pub fn mac(a: &[c64], b: &[c64]) -> f64 {
+    let mut dot = c64::new(0.0, 0.0);
+    let (mut na, mut nb) = (0.0, 0.0);
+    for (x, y) in a.iter().zip(b) {
+        dot += x.conj() * y;
+        na += x.norm_sqr();
+        nb += y.norm_sqr();
+    }
+    if na > 0.0 && nb > 0.0 {
+        dot.norm_sqr() / (na * nb)
+    } else {
+        0.0
+    }
+}

@@ -1,0 +1,103 @@
+//! Threshold of instability: the lowest spin speed of a range at which a pole has a positive
+//! decay rate.
+//!
+//! The growth `g(Omega) = max_poles (sigma - 1e-10 |s|)` is evaluated on the grid; the first grid
+//! interval where it turns positive brackets the threshold, which is then refined by a
+//! bracketing root finder (Illinois false position with forced bisection) to a relative width of
+//! [`TOLERANCE`]. The bracket is kept, so it also converges onto a jump of `g`: the hysteretic
+//! model's step at a critical speed is exactly such a jump.
+
+use super::AnalysisError;
+use super::poles::{Pole, PoleSet, poles_at};
+use crate::damping::DampedModel;
+use rayon::prelude::*;
+
+/// Relative width of the final bracket (the API promises 1e-6).
+pub const TOLERANCE: f64 = 1e-10;
+
+/// The threshold and the pole that becomes unstable there.
+#[derive(Debug, Clone)]
+pub struct Threshold {
+    pub speed: f64,
+    pub pole: Pole,
+    /// Rank of the pole by |frequency| within its whirl, from 1.
+    pub mode: usize,
+}
+
+/// Pole sets over a grid of speeds, computed in parallel.
+pub fn sweep(model: &DampedModel, speeds: &[f64]) -> Result<Vec<PoleSet>, AnalysisError> {
+    speeds
+        .par_iter()
+        .map(|&w| poles_at(model, w).map_err(AnalysisError::from))
+        .collect()
+}
+
+/// Threshold over the range of `speeds`, the grid only bracketing it.
+pub fn stability(model: &DampedModel, speeds: &[f64]) -> Result<Option<Threshold>, AnalysisError> {
+    let sets = sweep(model, speeds)?;
+    threshold(model, &sets)
+}
+
+/// Threshold from pole sets already computed on a grid (as a Campbell sweep has them).
+pub fn threshold(model: &DampedModel, sets: &[PoleSet]) -> Result<Option<Threshold>, AnalysisError> {
+    let Some(first) = sets.iter().position(|s| s.growth() > 0.0) else {
+        return Ok(None);
+    };
+    if first == 0 {
+        return Ok(Some(describe(&sets[0])));
+    }
+    let (mut lo, mut glo) = (sets[first - 1].speed, sets[first - 1].growth());
+    let mut hi_set = sets[first].clone();
+    let (mut hi, mut ghi) = (hi_set.speed, hi_set.growth());
+    // Illinois: halve the retained end's value when the same end is kept twice.
+    let mut kept_side = 0i8;
+    let mut iterations = 0;
+    while hi - lo > TOLERANCE * hi.abs().max(f64::MIN_POSITIVE) && iterations < 200 {
+        iterations += 1;
+        let width = hi - lo;
+        let mut x = if iterations % 3 == 0 || !(ghi - glo).is_finite() || ghi == glo {
+            0.5 * (lo + hi)
+        } else {
+            hi - ghi * (hi - lo) / (ghi - glo)
+        };
+        // Stay strictly inside the bracket.
+        if !(x > lo && x < hi) {
+            x = 0.5 * (lo + hi);
+        }
+        let set = poles_at(model, x)?;
+        let g = set.growth();
+        if g > 0.0 {
+            hi = x;
+            ghi = g;
+            hi_set = set;
+            if kept_side == -1 {
+                glo *= 0.5;
+            }
+            kept_side = -1;
+        } else {
+            lo = x;
+            glo = g;
+            if kept_side == 1 {
+                ghi *= 0.5;
+            }
+            kept_side = 1;
+        }
+        if hi - lo > 0.75 * width && iterations % 3 != 0 {
+            // Slow progress is cured by the next forced bisection.
+            continue;
+        }
+    }
+    Ok(Some(describe(&hi_set)))
+}
+
+fn describe(set: &PoleSet) -> Threshold {
+    let pole = set
+        .least_stable()
+        .cloned()
+        .expect("an unstable set has a pole");
+    Threshold {
+        speed: set.speed,
+        mode: set.mode_number(&pole),
+        pole,
+    }
+}

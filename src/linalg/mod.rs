@@ -1,0 +1,193 @@
+//! The thin layer over faer: the only module that imports it.
+//!
+//! Everything the numerics need from dense linear algebra:
+//! - the complex eigendecomposition `A V = V diag(s)` of a general (non-Hermitian) matrix;
+//! - the symmetric-definite pencil `K phi = w^2 M phi` by Cholesky: with `M = L L^T`,
+//!   `L^-1 K L^-T u = w^2 u` and `phi = L^-T u`, so that `phi^T M phi = I` (mass-normalised);
+//! - solves with a symmetric positive definite matrix (the mass matrix).
+//!
+//! faer runs sequentially here (`Par::Seq`, set once at startup): the service parallelises over
+//! spin speeds instead, which is faster on few cores than parallelising one small problem.
+
+use faer::linalg::solvers::Solve;
+use faer::{Par, Side};
+
+pub use faer::c64;
+
+/// Dense real matrix.
+pub type RMat = faer::Mat<f64>;
+/// Dense complex matrix.
+pub type CMat = faer::Mat<c64>;
+
+/// A failure of a decomposition: reported to the caller as an unsolvable model, never a panic.
+#[derive(Debug, Clone, PartialEq)]
+pub enum LinalgError {
+    /// The QR algorithm did not converge.
+    NoConvergence,
+    /// The matrix that must be positive definite is not.
+    NotPositiveDefinite,
+    /// A result contains NaN or infinity.
+    NonFinite,
+}
+
+impl std::fmt::Display for LinalgError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::NoConvergence => write!(f, "the eigenvalue iteration did not converge"),
+            Self::NotPositiveDefinite => write!(f, "the mass matrix is not positive definite"),
+            Self::NonFinite => write!(f, "the computation produced a non-finite number"),
+        }
+    }
+}
+
+impl std::error::Error for LinalgError {}
+
+/// Makes faer sequential for the whole process (see the module docs).
+pub fn set_sequential() {
+    faer::set_global_parallelism(Par::Seq);
+}
+
+/// Eigenvalues and right eigenvectors (columns, unit 2-norm) of a general complex matrix.
+pub struct Eigen {
+    pub values: Vec<c64>,
+    pub vectors: CMat,
+}
+
+/// Complex eigendecomposition `A V = V diag(s)`.
+pub fn eigen(a: &CMat) -> Result<Eigen, LinalgError> {
+    if !all_finite_c(a) {
+        return Err(LinalgError::NonFinite);
+    }
+    let e = a.eigen().map_err(|_| LinalgError::NoConvergence)?;
+    let s = e.S().column_vector();
+    let values: Vec<c64> = (0..a.nrows()).map(|j| s[j]).collect();
+    if values.iter().any(|v| !v.re.is_finite() || !v.im.is_finite()) {
+        return Err(LinalgError::NonFinite);
+    }
+    Ok(Eigen {
+        values,
+        vectors: e.U().to_owned(),
+    })
+}
+
+/// Undamped modes of the symmetric pencil `(K, M)`, `M` positive definite.
+pub struct SymmetricModes {
+    /// Eigenvalues `w^2`, ascending.
+    pub omega_squared: Vec<f64>,
+    /// Mass-normalised modes as columns: `phi^T M phi = I`, `phi^T K phi = diag(w^2)`.
+    pub phi: RMat,
+}
+
+/// Solves `K phi = w^2 M phi` (see the module docs).
+pub fn symmetric_modes(k: &RMat, m: &RMat) -> Result<SymmetricModes, LinalgError> {
+    if !all_finite_r(k) || !all_finite_r(m) {
+        return Err(LinalgError::NonFinite);
+    }
+    let n = k.nrows();
+    let llt = m
+        .llt(Side::Lower)
+        .map_err(|_| LinalgError::NotPositiveDefinite)?;
+    let l = llt.L().to_owned();
+    // A = L^-1 K L^-T, computed as two triangular solves.
+    let mut x = k.clone();
+    l.as_ref()
+        .solve_lower_triangular_in_place(x.as_mut()); // L^-1 K
+    let mut a = x.transpose().to_owned();
+    l.as_ref()
+        .solve_lower_triangular_in_place(a.as_mut()); // L^-1 (L^-1 K)^T = L^-1 K L^-T
+    // Symmetrise against round-off before the symmetric solver.
+    let a = RMat::from_fn(n, n, |i, j| 0.5 * (a[(i, j)] + a[(j, i)]));
+    let e = a
+        .self_adjoint_eigen(Side::Lower)
+        .map_err(|_| LinalgError::NoConvergence)?;
+    let s = e.S().column_vector();
+    let omega_squared: Vec<f64> = (0..n).map(|i| s[i]).collect();
+    // phi = L^-T u
+    let mut phi = e.U().to_owned();
+    l.as_ref()
+        .transpose()
+        .solve_upper_triangular_in_place(phi.as_mut());
+    if omega_squared.iter().any(|v| !v.is_finite()) || !all_finite_r(&phi) {
+        return Err(LinalgError::NonFinite);
+    }
+    Ok(SymmetricModes { omega_squared, phi })
+}
+
+/// `M^-1 B` for a symmetric positive definite `M` and a complex right-hand side.
+pub fn spd_solve(m: &RMat, b: &CMat) -> Result<CMat, LinalgError> {
+    let mc = to_complex(m);
+    let llt = mc
+        .llt(Side::Lower)
+        .map_err(|_| LinalgError::NotPositiveDefinite)?;
+    Ok(llt.solve(b))
+}
+
+/// Real to complex matrix.
+pub fn to_complex(a: &RMat) -> CMat {
+    CMat::from_fn(a.nrows(), a.ncols(), |i, j| c64::new(a[(i, j)], 0.0))
+}
+
+/// `A + i B` for real `A`, `B`.
+pub fn complex_from_parts(re: &RMat, im: &RMat) -> CMat {
+    CMat::from_fn(re.nrows(), re.ncols(), |i, j| c64::new(re[(i, j)], im[(i, j)]))
+}
+
+fn all_finite_r(a: &RMat) -> bool {
+    (0..a.ncols()).all(|j| (0..a.nrows()).all(|i| a[(i, j)].is_finite()))
+}
+
+fn all_finite_c(a: &CMat) -> bool {
+    (0..a.ncols()).all(|j| {
+        (0..a.nrows()).all(|i| a[(i, j)].re.is_finite() && a[(i, j)].im.is_finite())
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn symmetric_modes_of_a_two_mass_chain() {
+        // m = diag(1, 2), k = [[3, -1], [-1, 1]]: w^2 = (5 +- sqrt(17)) / 4.
+        let m = RMat::from_fn(2, 2, |i, j| if i == j { (i + 1) as f64 } else { 0.0 });
+        let k = RMat::from_fn(2, 2, |i, j| [[3.0, -1.0], [-1.0, 1.0]][i][j]);
+        let modes = symmetric_modes(&k, &m).unwrap();
+        let r = 17f64.sqrt();
+        assert!((modes.omega_squared[0] - (5.0 - r) / 4.0).abs() < 1e-14);
+        assert!((modes.omega_squared[1] - (5.0 + r) / 4.0).abs() < 1e-14);
+        let ptmp = modes.phi.transpose() * &m * &modes.phi;
+        for i in 0..2 {
+            for j in 0..2 {
+                let expected = if i == j { 1.0 } else { 0.0 };
+                assert!((ptmp[(i, j)] - expected).abs() < 1e-14);
+            }
+        }
+    }
+
+    #[test]
+    fn eigen_of_a_rotation_generator() {
+        let a = CMat::from_fn(2, 2, |i, j| c64::new([[0.0, -1.0], [1.0, 0.0]][i][j], 0.0));
+        let mut s = eigen(&a).unwrap().values;
+        s.sort_by(|x, y| x.im.total_cmp(&y.im));
+        assert!((s[0] - c64::new(0.0, -1.0)).norm() < 1e-14);
+        assert!((s[1] - c64::new(0.0, 1.0)).norm() < 1e-14);
+    }
+
+    #[test]
+    fn non_finite_input_is_an_error_not_a_panic() {
+        let a = CMat::from_fn(2, 2, |_, _| c64::new(f64::NAN, 0.0));
+        assert_eq!(eigen(&a).err(), Some(LinalgError::NonFinite));
+    }
+}
+
+/// Solves the small dense real system `A x = b` (partial pivoting LU).
+pub fn solve_real(a: &RMat, b: &[f64]) -> Result<Vec<f64>, LinalgError> {
+    let rhs = RMat::from_fn(b.len(), 1, |i, _| b[i]);
+    let x = a.partial_piv_lu().solve(&rhs);
+    let x: Vec<f64> = (0..b.len()).map(|i| x[(i, 0)]).collect();
+    if x.iter().all(|v| v.is_finite()) {
+        Ok(x)
+    } else {
+        Err(LinalgError::NonFinite)
+    }
+}

@@ -1,0 +1,253 @@
+//! Wire types of the HTTP/JSON contract (`../shared/spec/API.md`): what clients send and receive.
+//! Field names are the contract; add fields, never rename them. All quantities SI, speeds and
+//! frequencies in rad/s.
+
+use serde::{Deserialize, Serialize};
+use utoipa::ToSchema;
+
+/// The rotor model, tagged by `type`.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[serde(tag = "type", rename_all = "lowercase")]
+pub enum RotorInput {
+    /// A point mass on a massless isotropic shaft (one node, node 0). With `mass = stiffness = 1`
+    /// this is the paper's nondimensional rotor: speeds and poles come out in units of
+    /// `sqrt(k/m)`.
+    Jeffcott(JeffcottInput),
+}
+
+/// Jeffcott (Laval) rotor.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct JeffcottInput {
+    /// Mass, kg (> 0).
+    pub mass: f64,
+    /// Shaft stiffness, N/m (> 0).
+    pub stiffness: f64,
+    /// Loss factor of the rotating (shaft material) hysteretic damping, in [0, 1).
+    #[serde(default)]
+    pub loss_factor_rotating: f64,
+    /// Loss factor of the nonrotating (support) hysteretic damping, in [0, 1).
+    #[serde(default)]
+    pub loss_factor_nonrotating: f64,
+    /// Viscous rotating damping, N s/m (>= 0). Kept under every damping model.
+    #[serde(default)]
+    pub damping_rotating: f64,
+    /// Viscous nonrotating damping, N s/m (>= 0). Kept under every damping model.
+    #[serde(default)]
+    pub damping_nonrotating: f64,
+}
+
+/// How hysteretic damping (the loss factors) is modelled, tagged by `model`. Viscous damping
+/// is kept under every model.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[serde(tag = "model", rename_all = "lowercase")]
+pub enum DampingInput {
+    /// Loss factors ignored: viscous damping only.
+    Viscous(NoOptions),
+    /// Hysteretic damping itself (frequency domain): imaginary stiffness `i sgn(omega) K_n''`
+    /// and `i sgn(omega - Omega) K_r''`; poles are the sign-consistent roots. Near a forward
+    /// critical speed a mode may have no consistent pole: it is reported as missing (`null`).
+    Hysteretic(NoOptions),
+    /// Equivalent viscous damping (paper eqs. 5-7, 9): each mode's modal loss stiffness divided
+    /// by its undamped natural frequency, rotating and nonrotating apart.
+    Equivalent(EquivalentInput),
+    /// Nonviscous damping (Maxwell branches, paper eqs. 11-31): each hysteretic damper of each
+    /// retained mode becomes `branches` spring-damper branches, relaxation rates one `spacing`
+    /// apart centred on the mode's natural frequency, adding one massless internal coordinate
+    /// each. Valid in the time domain.
+    Nonviscous(NonviscousInput),
+}
+
+/// No options.
+#[derive(Debug, Clone, Default, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct NoOptions {}
+
+/// Options of the equivalent viscous model.
+#[derive(Debug, Clone, Default, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct EquivalentInput {
+    /// Number of lowest undamped modes that carry the equivalent damping (default: all).
+    #[serde(default)]
+    pub modes: Option<i64>,
+}
+
+/// Options of the nonviscous model.
+#[derive(Debug, Clone, Default, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct NonviscousInput {
+    /// Branches modelling the rotating (shaft material) loss factor.
+    #[serde(default)]
+    pub rotating: Option<BranchesInput>,
+    /// Branches modelling the nonrotating (support) loss factor.
+    #[serde(default)]
+    pub nonrotating: Option<BranchesInput>,
+    /// Number of lowest undamped modes that get dampers (default: all).
+    #[serde(default)]
+    pub modes: Option<i64>,
+}
+
+/// Maxwell branches of one nonviscous damper.
+#[derive(Debug, Clone, Default, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct BranchesInput {
+    /// Number of branches m, 1..=12 (default 3).
+    #[serde(default)]
+    pub branches: Option<i64>,
+    /// Ratio a between consecutive relaxation rates (default 10, one decade).
+    #[serde(default)]
+    pub spacing: Option<f64>,
+    /// Weights nu_j of the branch stiffness on the main coordinate, one per branch (default 1:
+    /// plain Maxwell branches). The paper's Example 1 uses nu_j = 1/gamma_j for the
+    /// nonrotating dampers.
+    #[serde(default)]
+    pub nu: Option<Vec<f64>>,
+}
+
+/// Spin speeds: a uniform grid `{start, stop, count}` or an explicit increasing list.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[serde(untagged, expecting = "`speeds` must be {\"start\", \"stop\", \"count\"} or a list of speeds")]
+pub enum SpeedsInput {
+    Range(SpeedRange),
+    List(Vec<f64>),
+}
+
+/// A uniform grid of spin speeds, both ends included.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SpeedRange {
+    /// First speed, rad/s (>= 0).
+    pub start: f64,
+    /// Last speed, rad/s (> start).
+    pub stop: f64,
+    /// Number of speeds (>= 2).
+    pub count: i64,
+}
+
+/// Body of `POST /v1/modal`.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ModalRequest {
+    pub rotor: RotorInput,
+    pub damping: DampingInput,
+    /// Spin speed, rad/s (default 0).
+    #[serde(default)]
+    pub speed: f64,
+}
+
+/// Body of `POST /v1/campbell` and `POST /v1/stability`.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SweepRequest {
+    pub rotor: RotorInput,
+    pub damping: DampingInput,
+    pub speeds: SpeedsInput,
+}
+
+/// Direction of whirl of a pole: `forward` (whirl frequency > 0), `backward` (< 0), or
+/// `internal` (an overdamped pole of the nonviscous model's internal coordinates).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, ToSchema)]
+#[serde(rename_all = "lowercase")]
+pub enum Whirl {
+    Forward,
+    Backward,
+    Internal,
+}
+
+/// A pole `s = decay_rate + i frequency` of the free motion `q0 e^{s t}`.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct Pole {
+    /// Real part sigma, 1/s; > 0 means unstable.
+    pub decay_rate: f64,
+    /// Imaginary part omega, rad/s: > 0 forward, < 0 backward whirl.
+    pub frequency: f64,
+    pub whirl: Whirl,
+    /// `-sigma / |s|`.
+    pub damping_ratio: f64,
+    /// `-2 pi sigma / |omega|`; null for a pole that does not oscillate.
+    pub log_decrement: Option<f64>,
+}
+
+/// Answer of `POST /v1/modal`.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct ModalResponse {
+    /// Spin speed, rad/s.
+    pub speed: f64,
+    /// Rotor poles by increasing |frequency|, then internal poles by decreasing |decay_rate|.
+    pub poles: Vec<Pole>,
+    /// Natural frequencies of the undamped nonrotating system, rad/s, ascending.
+    pub natural_frequencies: Vec<f64>,
+    /// Size of the first-order eigenproblem solved (per sign combination for `hysteretic`).
+    pub states: usize,
+    /// Rotor poles the model does not define at this speed (hysteretic model near a critical
+    /// speed: no sign-consistent root), counted against the number of rotor poles (2 per
+    /// complex degree of freedom).
+    pub missing_poles: usize,
+}
+
+/// One Campbell branch: the same physical mode followed from speed to speed.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct Branch {
+    /// Mode number, 1 = lowest |frequency| at the first speed, counted per whirl direction.
+    pub mode: usize,
+    pub whirl: Whirl,
+    /// Whirl frequency at each speed, rad/s (negative for backward whirl); null where the
+    /// model defines no pole for this mode.
+    pub frequency: Vec<Option<f64>>,
+    /// Decay rate at each speed, 1/s; null where the model defines no pole for this mode.
+    pub decay_rate: Vec<Option<f64>>,
+}
+
+/// Answer of `POST /v1/campbell`.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct CampbellResponse {
+    pub speeds: Vec<f64>,
+    pub branches: Vec<Branch>,
+    /// Speeds where a forward branch crosses the 1x line (frequency = speed), interpolated.
+    pub critical_speeds: Vec<f64>,
+    /// Lowest speed of the range at which a pole has decay_rate > 0, refined by root finding;
+    /// null when stable over the whole range.
+    pub threshold: Option<f64>,
+}
+
+/// Answer of `POST /v1/stability`.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct StabilityResponse {
+    /// Lowest speed in `range` at which a pole has decay_rate > 0 (to 1e-6 relative), or null.
+    pub threshold: Option<f64>,
+    /// Mode number of the pole that becomes unstable (by |frequency| within its whirl).
+    pub mode: Option<usize>,
+    pub whirl: Option<Whirl>,
+    /// Whirl frequency of that pole at the threshold, rad/s.
+    pub frequency: Option<f64>,
+    /// `[start, stop]` searched.
+    pub range: [f64; 2],
+}
+
+/// `GET /healthz`, `GET /readyz`.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct Status {
+    pub status: String,
+}
+
+/// An RFC 9457 problem: `application/problem+json`.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct Problem {
+    /// A URI reference naming the kind of problem.
+    #[serde(rename = "type")]
+    pub kind: String,
+    pub title: String,
+    pub status: u16,
+    pub detail: String,
+    /// Every bad field, with its JSON path (422).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub errors: Vec<ProblemField>,
+}
+
+/// One bad field of a request.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct ProblemField {
+    /// JSON path of the field, e.g. `rotor.mass`.
+    pub path: String,
+    pub message: String,
+}

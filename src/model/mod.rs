@@ -1,0 +1,13 @@
+//! The request as it arrives (`api`, serde + OpenAPI schemas) and its validation into domain
+//! types that cannot be physically invalid (`rotor`, `damping`, `speeds`).
+//!
+//! Validation collects every bad field with its JSON path and a reason, instead of stopping at
+//! the first, so that a client fixes its request in one round trip.
+
+pub mod api;
+pub mod damping;
+pub mod error;
+pub mod rotor;
+pub mod speeds;
+
+pub use error::{FieldError, Invalid};

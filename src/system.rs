@@ -1,0 +1,90 @@
+//! The assembled rotor in complex coordinates: the one currency between `fem`, `damping` and
+//! `analysis`.
+//!
+//! For an axisymmetric rotor on isotropic supports, with `q = x + i y` per node (translations,
+//! and rotations `phi_y - i phi_x`), the equation of motion is (MODEL.md section 1)
+//!
+//! ```text
+//! M q'' + (C_n + C_r - i Omega G) q' + (K - i Omega C_r) q  [+ i K''_n q + i K''_r q] = F(t)
+//! ```
+//!
+//! All matrices are real and symmetric. Rotating (shaft) and nonrotating (support) parts are
+//! kept apart all the way through: rotating damping brings the circulatory term
+//! `-i Omega C_r`, and hysteretic damping sees the frequency `omega - Omega` in the rotor and
+//! `omega` in the supports. The bracketed imaginary stiffness is how the damping models start;
+//! each model in `damping` turns it into something an analysis can solve.
+
+use crate::linalg::RMat;
+use crate::model::rotor::{Jeffcott, Rotor};
+
+/// What a degree of freedom of the assembled system is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DofKind {
+    /// Complex translation `x + i y`, m.
+    Translation,
+    /// Complex rotation `phi_y - i phi_x`, rad.
+    Rotation,
+}
+
+/// One complex degree of freedom: its node and kind.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Dof {
+    pub node: usize,
+    pub kind: DofKind,
+}
+
+/// Rotor matrices in complex coordinates (see the module docs).
+#[derive(Debug, Clone)]
+pub struct RotorSystem {
+    pub mass: RMat,
+    pub gyroscopic: RMat,
+    /// Real stiffness of the rotating parts (shaft).
+    pub stiffness_rotating: RMat,
+    /// Real stiffness of the nonrotating parts (supports).
+    pub stiffness_nonrotating: RMat,
+    pub damping_rotating: RMat,
+    pub damping_nonrotating: RMat,
+    /// Imaginary (hysteretic) stiffness `K''_r` of the rotating parts.
+    pub hysteretic_rotating: RMat,
+    /// Imaginary (hysteretic) stiffness `K''_n` of the nonrotating parts.
+    pub hysteretic_nonrotating: RMat,
+    pub dofs: Vec<Dof>,
+}
+
+impl RotorSystem {
+    /// Assembles a validated rotor.
+    pub fn assemble(rotor: &Rotor) -> Self {
+        match rotor {
+            Rotor::Jeffcott(j) => Self::jeffcott(j),
+        }
+    }
+
+    /// The Jeffcott rotor: one translation, the shaft's stiffness and loss are rotating.
+    pub fn jeffcott(j: &Jeffcott) -> Self {
+        let one = |v: f64| RMat::from_fn(1, 1, |_, _| v);
+        RotorSystem {
+            mass: one(j.mass()),
+            gyroscopic: one(0.0),
+            stiffness_rotating: one(j.stiffness()),
+            stiffness_nonrotating: one(0.0),
+            damping_rotating: one(j.damping_rotating()),
+            damping_nonrotating: one(j.damping_nonrotating()),
+            hysteretic_rotating: one(j.loss_factor_rotating() * j.stiffness()),
+            hysteretic_nonrotating: one(j.loss_factor_nonrotating() * j.stiffness()),
+            dofs: vec![Dof {
+                node: 0,
+                kind: DofKind::Translation,
+            }],
+        }
+    }
+
+    /// Number of complex degrees of freedom.
+    pub fn n(&self) -> usize {
+        self.mass.nrows()
+    }
+
+    /// Total real stiffness `K`.
+    pub fn stiffness(&self) -> RMat {
+        &self.stiffness_rotating + &self.stiffness_nonrotating
+    }
+}
