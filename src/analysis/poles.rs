@@ -75,6 +75,11 @@ impl PoleSet {
             .fold(f64::NEG_INFINITY, f64::max)
     }
 
+    /// Largest decay rate, without margin.
+    pub fn max_decay_rate(&self) -> f64 {
+        self.all().map(|p| p.s.re).fold(f64::NEG_INFINITY, f64::max)
+    }
+
     /// The pole with the largest growth.
     pub fn least_stable(&self) -> Option<&Pole> {
         self.all().max_by(|a, b| {

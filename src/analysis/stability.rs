@@ -2,10 +2,12 @@
 //! decay rate.
 //!
 //! The growth `g(Omega) = max_poles (sigma - 1e-10 |s|)` is evaluated on the grid; the first grid
-//! interval where it turns positive brackets the threshold, which is then refined by a
-//! bracketing root finder (Illinois false position with forced bisection) to a relative width of
-//! [`TOLERANCE`]. The bracket is kept, so it also converges onto a jump of `g`: the hysteretic
-//! model's step at a critical speed is exactly such a jump.
+//! interval where it turns positive brackets the threshold (the margin keeps round-off on an
+//! undamped rotor from counting as instability). The crossing of `max sigma` itself is then
+//! refined, when the bracket allows it, so the margin does not bias the result, by a bracketing
+//! root finder (Illinois false position with forced bisection) to a relative width of
+//! [`TOLERANCE`]. The bracket is kept, so it also converges onto a jump: the hysteretic model's
+//! step at a critical speed is exactly such a jump.
 
 use super::AnalysisError;
 use super::poles::{Pole, PoleSet, poles_at};
@@ -46,9 +48,17 @@ pub fn threshold(model: &DampedModel, sets: &[PoleSet]) -> Result<Option<Thresho
     if first == 0 {
         return Ok(Some(describe(&sets[0])));
     }
-    let (mut lo, mut glo) = (sets[first - 1].speed, sets[first - 1].growth());
+    // A grid point within round-off of the crossing (sigma > 0 by less than the margin) is the
+    // threshold itself.
+    if sets[first - 1].max_decay_rate() > 0.0 {
+        return Ok(Some(describe(&sets[first - 1])));
+    }
+    // Refine the pure decay rate where it brackets too, else the margined growth.
+    let pure = sets[first].max_decay_rate() > 0.0;
+    let f = |s: &PoleSet| if pure { s.max_decay_rate() } else { s.growth() };
+    let (mut lo, mut glo) = (sets[first - 1].speed, f(&sets[first - 1]));
     let mut hi_set = sets[first].clone();
-    let (mut hi, mut ghi) = (hi_set.speed, hi_set.growth());
+    let (mut hi, mut ghi) = (hi_set.speed, f(&hi_set));
     // Illinois: halve the retained end's value when the same end is kept twice.
     let mut kept_side = 0i8;
     let mut iterations = 0;
@@ -65,7 +75,7 @@ pub fn threshold(model: &DampedModel, sets: &[PoleSet]) -> Result<Option<Thresho
             x = 0.5 * (lo + hi);
         }
         let set = poles_at(model, x)?;
-        let g = set.growth();
+        let g = f(&set);
         if g > 0.0 {
             hi = x;
             ghi = g;
@@ -82,10 +92,7 @@ pub fn threshold(model: &DampedModel, sets: &[PoleSet]) -> Result<Option<Thresho
             }
             kept_side = 1;
         }
-        if hi - lo > 0.75 * width && iterations % 3 != 0 {
-            // Slow progress is cured by the next forced bisection.
-            continue;
-        }
+        debug_assert!(hi - lo < width);
     }
     Ok(Some(describe(&hi_set)))
 }

@@ -148,13 +148,13 @@ mod tests {
 
     #[test]
     fn symmetric_modes_of_a_two_mass_chain() {
-        // m = diag(1, 2), k = [[3, -1], [-1, 1]]: w^2 = (5 +- sqrt(17)) / 4.
+        // m = diag(1, 2), k = [[3, -1], [-1, 1]]: 2 w^4 - 7 w^2 + 2 = 0, w^2 = (7 +- sqrt(33)) / 4.
         let m = RMat::from_fn(2, 2, |i, j| if i == j { (i + 1) as f64 } else { 0.0 });
         let k = RMat::from_fn(2, 2, |i, j| [[3.0, -1.0], [-1.0, 1.0]][i][j]);
         let modes = symmetric_modes(&k, &m).unwrap();
-        let r = 17f64.sqrt();
-        assert!((modes.omega_squared[0] - (5.0 - r) / 4.0).abs() < 1e-14);
-        assert!((modes.omega_squared[1] - (5.0 + r) / 4.0).abs() < 1e-14);
+        let r = 33f64.sqrt();
+        assert!((modes.omega_squared[0] - (7.0 - r) / 4.0).abs() < 1e-14);
+        assert!((modes.omega_squared[1] - (7.0 + r) / 4.0).abs() < 1e-14);
         let ptmp = modes.phi.transpose() * &m * &modes.phi;
         for i in 0..2 {
             for j in 0..2 {

@@ -2,17 +2,31 @@
 //! Field names are the contract; add fields, never rename them. All quantities SI, speeds and
 //! frequencies in rad/s.
 
-use serde::{Deserialize, Serialize};
+use serde::{Deserialize, Deserializer, Serialize};
+use serde_json::Value;
 use utoipa::ToSchema;
 
+use super::tagged::{split_tag, unknown, variant};
+
 /// The rotor model, tagged by `type`.
-#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[derive(Debug, Clone, Serialize, ToSchema)]
 #[serde(tag = "type", rename_all = "lowercase")]
 pub enum RotorInput {
     /// A point mass on a massless isotropic shaft (one node, node 0). With `mass = stiffness = 1`
     /// this is the paper's nondimensional rotor: speeds and poles come out in units of
     /// `sqrt(k/m)`.
     Jeffcott(JeffcottInput),
+}
+
+impl<'de> Deserialize<'de> for RotorInput {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        const TYPES: &[&str] = &["jeffcott"];
+        let (tag, rest) = split_tag(Value::deserialize(d)?, "type", TYPES)?;
+        match tag.as_str() {
+            "jeffcott" => variant(rest).map(RotorInput::Jeffcott),
+            other => Err(unknown("type", other, TYPES)),
+        }
+    }
 }
 
 /// Jeffcott (Laval) rotor.
@@ -39,7 +53,7 @@ pub struct JeffcottInput {
 
 /// How hysteretic damping (the loss factors) is modelled, tagged by `model`. Viscous damping
 /// is kept under every model.
-#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[derive(Debug, Clone, Serialize, ToSchema)]
 #[serde(tag = "model", rename_all = "lowercase")]
 pub enum DampingInput {
     /// Loss factors ignored: viscous damping only.
@@ -56,6 +70,20 @@ pub enum DampingInput {
     /// apart centred on the mode's natural frequency, adding one massless internal coordinate
     /// each. Valid in the time domain.
     Nonviscous(NonviscousInput),
+}
+
+impl<'de> Deserialize<'de> for DampingInput {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        const MODELS: &[&str] = &["viscous", "hysteretic", "equivalent", "nonviscous"];
+        let (tag, rest) = split_tag(Value::deserialize(d)?, "model", MODELS)?;
+        match tag.as_str() {
+            "viscous" => variant(rest).map(DampingInput::Viscous),
+            "hysteretic" => variant(rest).map(DampingInput::Hysteretic),
+            "equivalent" => variant(rest).map(DampingInput::Equivalent),
+            "nonviscous" => variant(rest).map(DampingInput::Nonviscous),
+            other => Err(unknown("model", other, MODELS)),
+        }
+    }
 }
 
 /// No options.
@@ -105,11 +133,23 @@ pub struct BranchesInput {
 }
 
 /// Spin speeds: a uniform grid `{start, stop, count}` or an explicit increasing list.
-#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
-#[serde(untagged, expecting = "`speeds` must be {\"start\", \"stop\", \"count\"} or a list of speeds")]
+#[derive(Debug, Clone, Serialize, ToSchema)]
+#[serde(untagged)]
 pub enum SpeedsInput {
     Range(SpeedRange),
     List(Vec<f64>),
+}
+
+impl<'de> Deserialize<'de> for SpeedsInput {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        match Value::deserialize(d)? {
+            v @ Value::Object(_) => variant(v).map(SpeedsInput::Range),
+            v @ Value::Array(_) => variant(v).map(SpeedsInput::List),
+            _ => Err(serde::de::Error::custom(
+                "must be {\"start\", \"stop\", \"count\"} or a list of speeds",
+            )),
+        }
+    }
 }
 
 /// A uniform grid of spin speeds, both ends included.

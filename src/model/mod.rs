@@ -9,5 +9,6 @@ pub mod damping;
 pub mod error;
 pub mod rotor;
 pub mod speeds;
+pub mod tagged;
 
 pub use error::{FieldError, Invalid};

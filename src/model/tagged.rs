@@ -1,0 +1,80 @@
+//! Deserialising tagged enums without losing the path of a bad field.
+//!
+//! serde buffers the content of an internally tagged enum, so an error inside a variant is
+//! reported at the enum (`rotor`), not at the field (`rotor.mass`). Here the tag is split off
+//! by hand and the variant deserialised with path tracking; the inner path travels inside the
+//! error message behind a marker, and [`split_nested`] puts it back together at the top.
+
+use serde::de::{DeserializeOwned, Error};
+use serde_json::Value;
+
+const MARK: char = '\u{1f}';
+
+/// Removes the tag field from an object; errors say what was expected.
+pub fn split_tag<E: Error>(mut value: Value, tag: &str, variants: &[&str]) -> Result<(String, Value), E> {
+    let Some(obj) = value.as_object_mut() else {
+        return Err(E::custom(format!(
+            "expected an object with a `{tag}` field ({})",
+            variants.join(", ")
+        )));
+    };
+    match obj.remove(tag) {
+        Some(Value::String(s)) => Ok((s, value)),
+        Some(_) => Err(nested(tag, format!("must be a string: one of {}", variants.join(", ")))),
+        None => Err(E::custom(format!(
+            "missing field `{tag}` (one of {})",
+            variants.join(", ")
+        ))),
+    }
+}
+
+/// Deserialises a variant's content, keeping the path of a bad field.
+pub fn variant<T: DeserializeOwned, E: Error>(value: Value) -> Result<T, E> {
+    serde_path_to_error::deserialize(value).map_err(|e| {
+        let path = e.path().to_string();
+        let msg = e.into_inner().to_string();
+        match split_nested(&msg) {
+            // A tagged enum inside this variant: its path continues ours.
+            Some((inner, m)) => nested(&join(&path, inner), m.to_string()),
+            None if path == "." => E::custom(strip_position(&msg)),
+            None => nested(&path, strip_position(&msg)),
+        }
+    })
+}
+
+/// An unknown tag value, reported at the tag field.
+pub fn unknown<E: Error>(tag: &str, got: &str, variants: &[&str]) -> E {
+    nested(
+        tag,
+        format!("unknown {tag} `{got}`, expected one of: {}", variants.join(", ")),
+    )
+}
+
+fn nested<E: Error>(path: &str, msg: String) -> E {
+    E::custom(format!("{MARK}{path}{MARK}{msg}"))
+}
+
+/// Splits a message made by this module into (inner path, message).
+pub fn split_nested(msg: &str) -> Option<(&str, &str)> {
+    let rest = msg.strip_prefix(MARK)?;
+    rest.split_once(MARK)
+}
+
+/// Joins serde_path_to_error paths (`.` is the root).
+pub fn join(outer: &str, inner: &str) -> String {
+    match (outer, inner) {
+        (".", ".") => "(body)".into(),
+        (".", i) => i.into(),
+        (o, ".") => o.into(),
+        (o, i) if i.starts_with('[') => format!("{o}{i}"),
+        (o, i) => format!("{o}.{i}"),
+    }
+}
+
+/// serde_json appends " at line L column C" to data errors; the path says more.
+pub fn strip_position(msg: &str) -> String {
+    match msg.rfind(" at line ") {
+        Some(i) => msg[..i].to_string(),
+        None => msg.to_string(),
+    }
+}

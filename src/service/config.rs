@@ -1,0 +1,91 @@
+//! Settings, from the environment, each with a default that works on a laptop.
+
+/// Service settings. Every field has an environment variable (see the README).
+#[derive(Debug, Clone)]
+pub struct Config {
+    /// `HOST` (default `0.0.0.0`).
+    pub host: String,
+    /// `PORT` (default 8080).
+    pub port: u16,
+    /// `WHIRL_WORKERS`: analyses running at once (default: the number of cores).
+    pub workers: usize,
+    /// `WHIRL_QUEUE`: analyses waiting for a worker before new ones get 503 (default 64).
+    pub queue: usize,
+    /// `WHIRL_MAX_BODY_BYTES`: largest request body (default 8 MiB); larger gets 413.
+    pub max_body_bytes: usize,
+    /// `WHIRL_MAX_SPEEDS`: most spin speeds in one sweep (default 2000).
+    pub max_speeds: usize,
+    /// `WHIRL_LOG_FORMAT`: `text` (default) or `json`.
+    pub log_json: bool,
+}
+
+impl Default for Config {
+    fn default() -> Self {
+        Config {
+            host: "0.0.0.0".into(),
+            port: 8080,
+            workers: std::thread::available_parallelism().map_or(2, |n| n.get()),
+            queue: 64,
+            max_body_bytes: 8 * 1024 * 1024,
+            max_speeds: 2000,
+            log_json: false,
+        }
+    }
+}
+
+impl Config {
+    /// Reads the environment; a set but unparsable variable is an error, not a silent default.
+    pub fn from_env() -> Result<Self, String> {
+        Self::from_lookup(|k| std::env::var(k).ok())
+    }
+
+    pub fn from_lookup(get: impl Fn(&str) -> Option<String>) -> Result<Self, String> {
+        let d = Config::default();
+        fn num<T: std::str::FromStr>(
+            get: &impl Fn(&str) -> Option<String>,
+            key: &str,
+            default: T,
+            min: T,
+        ) -> Result<T, String>
+        where
+            T: PartialOrd + std::fmt::Display,
+        {
+            match get(key) {
+                None => Ok(default),
+                Some(v) => match v.trim().parse::<T>() {
+                    Ok(x) if x >= min => Ok(x),
+                    _ => Err(format!("{key}={v:?}: expected a whole number >= {min}")),
+                },
+            }
+        }
+        let log_json = match get("WHIRL_LOG_FORMAT").as_deref() {
+            None | Some("text") => false,
+            Some("json") => true,
+            Some(other) => return Err(format!("WHIRL_LOG_FORMAT={other:?}: expected text or json")),
+        };
+        Ok(Config {
+            host: get("HOST").unwrap_or(d.host),
+            port: num(&get, "PORT", d.port, 0)?,
+            workers: num(&get, "WHIRL_WORKERS", d.workers, 1)?,
+            queue: num(&get, "WHIRL_QUEUE", d.queue, 0)?,
+            max_body_bytes: num(&get, "WHIRL_MAX_BODY_BYTES", d.max_body_bytes, 1024)?,
+            max_speeds: num(&get, "WHIRL_MAX_SPEEDS", d.max_speeds, 2)?,
+            log_json,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn defaults_and_overrides() {
+        let c = Config::from_lookup(|_| None).unwrap();
+        assert_eq!((c.host.as_str(), c.port), ("0.0.0.0", 8080));
+        let c = Config::from_lookup(|k| (k == "PORT").then(|| "9000".to_string())).unwrap();
+        assert_eq!(c.port, 9000);
+        assert!(Config::from_lookup(|k| (k == "WHIRL_WORKERS").then(|| "0".into())).is_err());
+        assert!(Config::from_lookup(|k| (k == "PORT").then(|| "http".into())).is_err());
+    }
+}

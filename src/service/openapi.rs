@@ -1,0 +1,24 @@
+//! The OpenAPI document's frame; paths and schemas come from the handlers' annotations.
+
+use utoipa::OpenApi;
+
+#[derive(OpenApi)]
+#[openapi(
+    info(
+        title = "Whirl",
+        description = "Rotordynamics computation service: poles, Campbell diagrams and stability \
+thresholds of rotors with hysteretic damping treated properly (hysteretic, equivalent viscous and \
+nonviscous models, rotating and nonrotating apart). SI units; speeds and frequencies in rad/s. \
+Errors are application/problem+json with the path of every bad field.",
+        license(name = "MIT")
+    ),
+    tags(
+        (name = "analyses", description = "Eigenvalue analyses of a rotor model"),
+        (name = "operations", description = "Health and readiness")
+    )
+)]
+struct ApiDoc;
+
+pub fn base() -> utoipa::openapi::OpenApi {
+    ApiDoc::openapi()
+}
