@@ -33,7 +33,12 @@ fn poles(eta_r: f64, eta_n: f64, model: &DampingModel, speed: f64) -> PoleSet {
 }
 
 fn one(set: &PoleSet, whirl: Whirl) -> c64 {
-    let v: Vec<c64> = set.rotor.iter().filter(|p| p.whirl == whirl).map(|p| p.s).collect();
+    let v: Vec<c64> = set
+        .rotor
+        .iter()
+        .filter(|p| p.whirl == whirl)
+        .map(|p| p.s)
+        .collect();
     assert_eq!(v.len(), 1, "{whirl:?} poles: {v:?}");
     v[0]
 }
@@ -42,16 +47,28 @@ fn one(set: &PoleSet, whirl: Whirl) -> c64 {
 fn nvd_four_branches_at_rest_gives_the_printed_poles() {
     let set = poles(0.01, 0.0, &nvd(4), 0.0);
     assert_eq!(set.rotor.len(), 2);
-    assert_eq!(set.internal.len(), 4, "eta_n = 0 adds no nonrotating branches");
+    assert_eq!(
+        set.internal.len(),
+        4,
+        "eta_n = 0 adds no nonrotating branches"
+    );
     let f = one(&set, Whirl::Forward);
     let b = one(&set, Whirl::Backward);
     assert_printed(f.re, "-0.0044", "forward decay rate");
     assert_printed(f.im, "1.0152", "forward frequency");
     assert_printed(b.re, "-0.0044", "backward decay rate");
     assert_printed(b.im, "-1.0152", "backward frequency");
-    for (p, printed) in set.internal.iter().zip(["-31.6222", "-3.1584", "-0.3124", "-0.0311"]) {
+    for (p, printed) in set
+        .internal
+        .iter()
+        .zip(["-31.6222", "-3.1584", "-0.3124", "-0.0311"])
+    {
         assert_printed(p.s.re, printed, "internal pole");
-        assert!(p.s.im.abs() < 1e-9, "internal poles are real at rest: {}", p.s);
+        assert!(
+            p.s.im.abs() < 1e-9,
+            "internal poles are real at rest: {}",
+            p.s
+        );
     }
 }
 
@@ -88,9 +105,18 @@ fn zero_loss_factors_add_no_branches() {
 
 #[test]
 fn equivalent_threshold_is_eq_10() {
-    for (eta_n, eta_r) in [(0.0, 0.01), (0.01, 0.01), (0.02, 0.01), (0.005, 0.04), (0.06, 0.02)] {
-        let m = DampedModel::build(&system(eta_r, eta_n), &DampingModel::Equivalent { modes: None })
-            .unwrap();
+    for (eta_n, eta_r) in [
+        (0.0, 0.01),
+        (0.01, 0.01),
+        (0.02, 0.01),
+        (0.005, 0.04),
+        (0.06, 0.02),
+    ] {
+        let m = DampedModel::build(
+            &system(eta_r, eta_n),
+            &DampingModel::Equivalent { modes: None },
+        )
+        .unwrap();
         let speeds: Vec<f64> = (0..41).map(|i| i as f64 * 0.25).collect();
         let t = stability(&m, &speeds).unwrap().expect("unstable in range");
         let expected = 1.0 + eta_n / eta_r;
@@ -158,7 +184,11 @@ fn equivalent_and_hysteretic_agree_at_rest_to_second_order() {
         let h = poles(eta_r, eta_n, &DampingModel::Hysteretic, 0.0);
         for whirl in [Whirl::Forward, Whirl::Backward] {
             let d = (one(&e, whirl) - one(&h, whirl)).norm();
-            assert!(d <= eps * eps, "{whirl:?}: |E - H| = {d} > eta^2 = {}", eps * eps);
+            assert!(
+                d <= eps * eps,
+                "{whirl:?}: |E - H| = {d} > eta^2 = {}",
+                eps * eps
+            );
         }
     }
 }
@@ -198,12 +228,17 @@ fn viscous_jeffcott_matches_the_closed_form() {
         let disc = (b * b - 4.0 * c).sqrt();
         let roots = [(-b + disc) / 2.0, (-b - disc) / 2.0];
         for p in &set.rotor {
-            let d = roots.iter().map(|r| (r - p.s).norm()).fold(f64::INFINITY, f64::min);
+            let d = roots
+                .iter()
+                .map(|r| (r - p.s).norm())
+                .fold(f64::INFINITY, f64::min);
             assert!(d < 1e-9 * p.s.norm(), "{} at {speed}", p.s);
         }
     }
     // Threshold of viscous rotating damping: Omega = w_n (1 + c_n / c_r) = 2055.5 rad/s.
-    let t = stability(&m, &[0.0, 1000.0, 2000.0, 3000.0]).unwrap().unwrap();
+    let t = stability(&m, &[0.0, 1000.0, 2000.0, 3000.0])
+        .unwrap()
+        .unwrap();
     let expected = (1.2e6f64 / 3.0).sqrt() * (1.0 + 90.0 / 40.0);
     assert!((t.speed - expected).abs() < 1e-6 * expected);
 }
@@ -214,11 +249,31 @@ fn campbell_tracks_forward_and_backward_and_keeps_internal_poles_out() {
     let speeds: Vec<f64> = (0..=40).map(|i| i as f64 * 0.1).collect();
     let c = campbell(&m, &speeds).unwrap();
     assert_eq!(c.branches.len(), 2);
-    let fwd = c.branches.iter().find(|b| b.whirl == Whirl::Forward).unwrap();
-    let bwd = c.branches.iter().find(|b| b.whirl == Whirl::Backward).unwrap();
-    assert!(fwd.poles.iter().all(|p| p.is_some_and(|s| s.im > 0.9 && s.im < 1.1)));
-    assert!(bwd.poles.iter().all(|p| p.is_some_and(|s| s.im < -0.9 && s.im > -1.1)));
-    assert_printed(fwd.poles[40].unwrap().re, "0.0049", "forward decay rate at 4");
+    let fwd = c
+        .branches
+        .iter()
+        .find(|b| b.whirl == Whirl::Forward)
+        .unwrap();
+    let bwd = c
+        .branches
+        .iter()
+        .find(|b| b.whirl == Whirl::Backward)
+        .unwrap();
+    assert!(
+        fwd.poles
+            .iter()
+            .all(|p| p.is_some_and(|s| s.im > 0.9 && s.im < 1.1))
+    );
+    assert!(
+        bwd.poles
+            .iter()
+            .all(|p| p.is_some_and(|s| s.im < -0.9 && s.im > -1.1))
+    );
+    assert_printed(
+        fwd.poles[40].unwrap().re,
+        "0.0049",
+        "forward decay rate at 4",
+    );
     assert_eq!(c.critical_speeds.len(), 1);
     assert!((c.critical_speeds[0] - 1.0).abs() < 0.03);
     // NVD with rotating damping only has a threshold, smoothed, above the critical speed.
@@ -235,7 +290,11 @@ fn hysteretic_campbell_reports_undefined_values_as_missing_not_invented() {
     let m = DampedModel::build(&system(eta_r, eta_n), &DampingModel::Hysteretic).unwrap();
     let speeds: Vec<f64> = (0..=200).map(|i| 0.9 + i as f64 * 0.001).collect();
     let c = campbell(&m, &speeds).unwrap();
-    let fwd = c.branches.iter().find(|b| b.whirl == Whirl::Forward).unwrap();
+    let fwd = c
+        .branches
+        .iter()
+        .find(|b| b.whirl == Whirl::Forward)
+        .unwrap();
     let exact = |b: f64| c64::new(0.0, 1.0) * c64::new(1.0, eta_n + b * eta_r).sqrt();
     for (w, p) in speeds.iter().zip(&fwd.poles) {
         let s = p.expect("eta_n, eta_r > 0: a forward root is consistent everywhere");

@@ -32,23 +32,20 @@ pub fn campbell(model: &DampedModel, speeds: &[f64]) -> Result<CampbellResult, A
     let tracks = track(&sets, 2 * model.dofs());
     let mut branches: Vec<Branch> = tracks
         .into_iter()
-        .filter_map(|t| {
-            let defined: Vec<c64> = t.values.iter().flatten().cloned().collect();
-            let first = *defined.first()?;
-            let forward = defined.iter().filter(|s| s.im >= 0.0).count();
-            let whirl = if 2 * forward >= defined.len() {
-                Whirl::Forward
-            } else {
-                Whirl::Backward
-            };
-            Some((first.im.abs(), whirl, t.values))
-        })
-        .collect::<Vec<_>>()
-        .into_iter()
-        .map(|(_, whirl, poles)| Branch {
-            mode: 0,
-            whirl,
-            poles,
+        .filter(|t| t.values.iter().any(Option::is_some))
+        .map(|t| {
+            // A branch's whirl is the direction of most of its defined poles.
+            let defined = t.values.iter().flatten().count();
+            let forward = t.values.iter().flatten().filter(|s| s.im >= 0.0).count();
+            Branch {
+                mode: 0,
+                whirl: if 2 * forward >= defined {
+                    Whirl::Forward
+                } else {
+                    Whirl::Backward
+                },
+                poles: t.values,
+            }
         })
         .collect();
     number_modes(&mut branches);

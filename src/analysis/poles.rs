@@ -40,8 +40,7 @@ impl Pole {
     /// `-2 pi sigma / |omega|`, `None` for a pole that does not oscillate.
     pub fn log_decrement(&self) -> Option<f64> {
         let w = self.s.im.abs();
-        (w > 1e-12 * self.s.norm() && w > 0.0)
-            .then(|| -2.0 * std::f64::consts::PI * self.s.re / w)
+        (w > 1e-12 * self.s.norm() && w > 0.0).then(|| -2.0 * std::f64::consts::PI * self.s.re / w)
     }
 }
 

@@ -41,7 +41,10 @@ pub fn stability(model: &DampedModel, speeds: &[f64]) -> Result<Option<Threshold
 }
 
 /// Threshold from pole sets already computed on a grid (as a Campbell sweep has them).
-pub fn threshold(model: &DampedModel, sets: &[PoleSet]) -> Result<Option<Threshold>, AnalysisError> {
+pub fn threshold(
+    model: &DampedModel,
+    sets: &[PoleSet],
+) -> Result<Option<Threshold>, AnalysisError> {
     let Some(first) = sets.iter().position(|s| s.growth() > 0.0) else {
         return Ok(None);
     };

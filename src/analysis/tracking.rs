@@ -207,7 +207,9 @@ mod tests {
         // Deterministic pseudo-random 3x5 and 5x3 costs against all permutations.
         let mut seed = 12345u64;
         let mut rnd = || {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             (seed >> 11) as f64 / (1u64 << 53) as f64
         };
         for _ in 0..20 {
@@ -224,7 +226,9 @@ mod tests {
                 }
             }
             assert!((total(&cost, &a) - best).abs() < 1e-12);
-            let t: Vec<Vec<f64>> = (0..5).map(|j| (0..3).map(|i| cost[i][j]).collect()).collect();
+            let t: Vec<Vec<f64>> = (0..5)
+                .map(|j| (0..3).map(|i| cost[i][j]).collect())
+                .collect();
             assert!((total(&t, &assignment(&t)) - best).abs() < 1e-12);
         }
     }

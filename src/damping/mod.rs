@@ -26,7 +26,7 @@ pub use state::{Branches, SecondOrder, StateModel};
 #[derive(Debug, Clone)]
 pub enum DampedModel {
     /// Viscous, equivalent and nonviscous models: one linear system.
-    Linear(StateModel),
+    Linear(Box<StateModel>),
     /// The hysteretic model: one linear system per sign pair, roots filtered by consistency.
     Hysteretic(Vec<hysteretic::SignedModel>),
 }
@@ -64,20 +64,25 @@ impl DampedModel {
     pub fn build(system: &RotorSystem, model: &DampingModel) -> Result<Self, DampingError> {
         let viscous = SecondOrder::viscous(system);
         match model {
-            DampingModel::Viscous => Ok(Self::Linear(StateModel::new(
+            DampingModel::Viscous => Ok(Self::Linear(Box::new(StateModel::new(
                 &viscous,
                 &Branches::none(system.n()),
-            )?)),
+            )?))),
             DampingModel::Hysteretic => Ok(Self::Hysteretic(hysteretic::signed_models(system)?)),
             DampingModel::Equivalent { modes } => {
                 let basis = basis(system, *modes)?;
                 let so = equivalent::second_order(system, &basis);
-                Ok(Self::Linear(StateModel::new(&so, &Branches::none(system.n()))?))
+                Ok(Self::Linear(Box::new(StateModel::new(
+                    &so,
+                    &Branches::none(system.n()),
+                )?)))
             }
             DampingModel::Nonviscous(spec) => {
                 let basis = basis(system, spec.modes)?;
                 let branches = nonviscous::branches(system, &basis, spec);
-                Ok(Self::Linear(StateModel::new(&viscous, &branches)?))
+                Ok(Self::Linear(Box::new(StateModel::new(
+                    &viscous, &branches,
+                )?)))
             }
         }
     }

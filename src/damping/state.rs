@@ -184,23 +184,29 @@ impl StateModel {
     pub fn rotor_energy_fraction(&self, x: &[c64], y: &[c64]) -> f64 {
         let n = self.n;
         let mut e_rotor = 0.0;
-        for r in 0..n {
-            let mut kx = c64::new(0.0, 0.0);
-            for c in 0..n {
-                kx += self.stiffness[(r, c)] * x[c];
-            }
-            e_rotor += (x[r].conj() * kx).re;
+        for (r, xr) in x.iter().enumerate().take(n) {
+            let kx: c64 = x
+                .iter()
+                .enumerate()
+                .map(|(c, xc)| self.stiffness[(r, c)] * xc)
+                .sum();
+            e_rotor += (xr.conj() * kx).re;
         }
         let mut e_branch = 0.0;
         for (j, yj) in y.iter().enumerate() {
-            let mut ux = c64::new(0.0, 0.0);
-            for c in 0..n {
-                ux += self.branches.coupling[(c, j)] * x[c];
-            }
+            let ux: c64 = x
+                .iter()
+                .enumerate()
+                .map(|(c, xc)| self.branches.coupling[(c, j)] * xc)
+                .sum();
             e_branch += self.branches.stiffness[j] * (yj - ux).norm_sqr();
         }
         let total = e_rotor.abs() + e_branch;
-        if total > 0.0 { e_rotor.abs() / total } else { 1.0 }
+        if total > 0.0 {
+            e_rotor.abs() / total
+        } else {
+            1.0
+        }
     }
 }
 

@@ -21,7 +21,10 @@ pub struct ModalBasis {
 pub enum ModalError {
     Linalg(LinalgError),
     /// A mode with (numerically) zero frequency: the rotor is not supported.
-    RigidBody { mode: usize, omega_squared: f64 },
+    RigidBody {
+        mode: usize,
+        omega_squared: f64,
+    },
 }
 
 impl std::fmt::Display for ModalError {

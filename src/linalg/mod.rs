@@ -61,7 +61,10 @@ pub fn eigen(a: &CMat) -> Result<Eigen, LinalgError> {
     let e = a.eigen().map_err(|_| LinalgError::NoConvergence)?;
     let s = e.S().column_vector();
     let values: Vec<c64> = (0..a.nrows()).map(|j| s[j]).collect();
-    if values.iter().any(|v| !v.re.is_finite() || !v.im.is_finite()) {
+    if values
+        .iter()
+        .any(|v| !v.re.is_finite() || !v.im.is_finite())
+    {
         return Err(LinalgError::NonFinite);
     }
     Ok(Eigen {
@@ -90,11 +93,9 @@ pub fn symmetric_modes(k: &RMat, m: &RMat) -> Result<SymmetricModes, LinalgError
     let l = llt.L().to_owned();
     // A = L^-1 K L^-T, computed as two triangular solves.
     let mut x = k.clone();
-    l.as_ref()
-        .solve_lower_triangular_in_place(x.as_mut()); // L^-1 K
+    l.as_ref().solve_lower_triangular_in_place(x.as_mut()); // L^-1 K
     let mut a = x.transpose().to_owned();
-    l.as_ref()
-        .solve_lower_triangular_in_place(a.as_mut()); // L^-1 (L^-1 K)^T = L^-1 K L^-T
+    l.as_ref().solve_lower_triangular_in_place(a.as_mut()); // L^-1 (L^-1 K)^T = L^-1 K L^-T
     // Symmetrise against round-off before the symmetric solver.
     let a = RMat::from_fn(n, n, |i, j| 0.5 * (a[(i, j)] + a[(j, i)]));
     let e = a
@@ -129,7 +130,9 @@ pub fn to_complex(a: &RMat) -> CMat {
 
 /// `A + i B` for real `A`, `B`.
 pub fn complex_from_parts(re: &RMat, im: &RMat) -> CMat {
-    CMat::from_fn(re.nrows(), re.ncols(), |i, j| c64::new(re[(i, j)], im[(i, j)]))
+    CMat::from_fn(re.nrows(), re.ncols(), |i, j| {
+        c64::new(re[(i, j)], im[(i, j)])
+    })
 }
 
 fn all_finite_r(a: &RMat) -> bool {
@@ -137,9 +140,20 @@ fn all_finite_r(a: &RMat) -> bool {
 }
 
 fn all_finite_c(a: &CMat) -> bool {
-    (0..a.ncols()).all(|j| {
-        (0..a.nrows()).all(|i| a[(i, j)].re.is_finite() && a[(i, j)].im.is_finite())
-    })
+    (0..a.ncols())
+        .all(|j| (0..a.nrows()).all(|i| a[(i, j)].re.is_finite() && a[(i, j)].im.is_finite()))
+}
+
+/// Solves the small dense real system `A x = b` (partial pivoting LU).
+pub fn solve_real(a: &RMat, b: &[f64]) -> Result<Vec<f64>, LinalgError> {
+    let rhs = RMat::from_fn(b.len(), 1, |i, _| b[i]);
+    let x = a.partial_piv_lu().solve(&rhs);
+    let x: Vec<f64> = (0..b.len()).map(|i| x[(i, 0)]).collect();
+    if x.iter().all(|v| v.is_finite()) {
+        Ok(x)
+    } else {
+        Err(LinalgError::NonFinite)
+    }
 }
 
 #[cfg(test)]
@@ -177,17 +191,5 @@ mod tests {
     fn non_finite_input_is_an_error_not_a_panic() {
         let a = CMat::from_fn(2, 2, |_, _| c64::new(f64::NAN, 0.0));
         assert_eq!(eigen(&a).err(), Some(LinalgError::NonFinite));
-    }
-}
-
-/// Solves the small dense real system `A x = b` (partial pivoting LU).
-pub fn solve_real(a: &RMat, b: &[f64]) -> Result<Vec<f64>, LinalgError> {
-    let rhs = RMat::from_fn(b.len(), 1, |i, _| b[i]);
-    let x = a.partial_piv_lu().solve(&rhs);
-    let x: Vec<f64> = (0..b.len()).map(|i| x[(i, 0)]).collect();
-    if x.iter().all(|v| v.is_finite()) {
-        Ok(x)
-    } else {
-        Err(LinalgError::NonFinite)
     }
 }

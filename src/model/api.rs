@@ -6,7 +6,7 @@ use serde::{Deserialize, Deserializer, Serialize};
 use serde_json::Value;
 use utoipa::ToSchema;
 
-use super::tagged::{split_tag, unknown, variant};
+use super::tagged::{split_tag, strict_variant, unknown, variant};
 
 /// The rotor model, tagged by `type`.
 #[derive(Debug, Clone, Serialize, ToSchema)]
@@ -23,7 +23,7 @@ impl<'de> Deserialize<'de> for RotorInput {
         const TYPES: &[&str] = &["jeffcott"];
         let (tag, rest) = split_tag(Value::deserialize(d)?, "type", TYPES)?;
         match tag.as_str() {
-            "jeffcott" => variant(rest).map(RotorInput::Jeffcott),
+            "jeffcott" => strict_variant(rest).map(RotorInput::Jeffcott),
             other => Err(unknown("type", other, TYPES)),
         }
     }
@@ -31,7 +31,6 @@ impl<'de> Deserialize<'de> for RotorInput {
 
 /// Jeffcott (Laval) rotor.
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
-#[serde(deny_unknown_fields)]
 pub struct JeffcottInput {
     /// Mass, kg (> 0).
     pub mass: f64,
@@ -77,10 +76,10 @@ impl<'de> Deserialize<'de> for DampingInput {
         const MODELS: &[&str] = &["viscous", "hysteretic", "equivalent", "nonviscous"];
         let (tag, rest) = split_tag(Value::deserialize(d)?, "model", MODELS)?;
         match tag.as_str() {
-            "viscous" => variant(rest).map(DampingInput::Viscous),
-            "hysteretic" => variant(rest).map(DampingInput::Hysteretic),
-            "equivalent" => variant(rest).map(DampingInput::Equivalent),
-            "nonviscous" => variant(rest).map(DampingInput::Nonviscous),
+            "viscous" => strict_variant(rest).map(DampingInput::Viscous),
+            "hysteretic" => strict_variant(rest).map(DampingInput::Hysteretic),
+            "equivalent" => strict_variant(rest).map(DampingInput::Equivalent),
+            "nonviscous" => strict_variant(rest).map(DampingInput::Nonviscous),
             other => Err(unknown("model", other, MODELS)),
         }
     }
@@ -88,12 +87,10 @@ impl<'de> Deserialize<'de> for DampingInput {
 
 /// No options.
 #[derive(Debug, Clone, Default, Deserialize, Serialize, ToSchema)]
-#[serde(deny_unknown_fields)]
 pub struct NoOptions {}
 
 /// Options of the equivalent viscous model.
 #[derive(Debug, Clone, Default, Deserialize, Serialize, ToSchema)]
-#[serde(deny_unknown_fields)]
 pub struct EquivalentInput {
     /// Number of lowest undamped modes that carry the equivalent damping (default: all).
     #[serde(default)]
@@ -102,7 +99,6 @@ pub struct EquivalentInput {
 
 /// Options of the nonviscous model.
 #[derive(Debug, Clone, Default, Deserialize, Serialize, ToSchema)]
-#[serde(deny_unknown_fields)]
 pub struct NonviscousInput {
     /// Branches modelling the rotating (shaft material) loss factor.
     #[serde(default)]

@@ -87,7 +87,10 @@ fn parse_branches(b: Option<&BranchesInput>, at: &str, bad: &mut Invalid) -> Opt
         Some(m) => {
             bad.push(
                 format!("{at}.branches"),
-                format!("must be between 1 and {} (got {m})", BranchSet::MAX_BRANCHES),
+                format!(
+                    "must be between 1 and {} (got {m})",
+                    BranchSet::MAX_BRANCHES
+                ),
             );
             None
         }

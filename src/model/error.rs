@@ -48,7 +48,11 @@ impl Invalid {
 
     /// `Ok(v)` when nothing was recorded.
     pub fn into_result<T>(self, v: impl FnOnce() -> T) -> Result<T, Invalid> {
-        if self.0.is_empty() { Ok(v()) } else { Err(self) }
+        if self.0.is_empty() {
+            Ok(v())
+        } else {
+            Err(self)
+        }
     }
 }
 

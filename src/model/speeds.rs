@@ -47,7 +47,10 @@ impl SpeedGrid {
             SpeedsInput::List(v) => {
                 let mut bad = Invalid::default();
                 if v.len() < 2 {
-                    bad.push("speeds", format!("needs at least 2 speeds (got {})", v.len()));
+                    bad.push(
+                        "speeds",
+                        format!("needs at least 2 speeds (got {})", v.len()),
+                    );
                 } else if v.len() > max {
                     bad.push(
                         "speeds",

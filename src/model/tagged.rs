@@ -11,7 +11,11 @@ use serde_json::Value;
 const MARK: char = '\u{1f}';
 
 /// Removes the tag field from an object; errors say what was expected.
-pub fn split_tag<E: Error>(mut value: Value, tag: &str, variants: &[&str]) -> Result<(String, Value), E> {
+pub fn split_tag<E: Error>(
+    mut value: Value,
+    tag: &str,
+    variants: &[&str],
+) -> Result<(String, Value), E> {
     let Some(obj) = value.as_object_mut() else {
         return Err(E::custom(format!(
             "expected an object with a `{tag}` field ({})",
@@ -20,7 +24,10 @@ pub fn split_tag<E: Error>(mut value: Value, tag: &str, variants: &[&str]) -> Re
     };
     match obj.remove(tag) {
         Some(Value::String(s)) => Ok((s, value)),
-        Some(_) => Err(nested(tag, format!("must be a string: one of {}", variants.join(", ")))),
+        Some(_) => Err(nested(
+            tag,
+            format!("must be a string: one of {}", variants.join(", ")),
+        )),
         None => Err(E::custom(format!(
             "missing field `{tag}` (one of {})",
             variants.join(", ")
@@ -42,11 +49,68 @@ pub fn variant<T: DeserializeOwned, E: Error>(value: Value) -> Result<T, E> {
     })
 }
 
+/// [`variant`] for a struct, refusing fields it does not know, before anything else (a typo
+/// is named as such, not as a missing field). The variant structs cannot use
+/// `deny_unknown_fields`: the OpenAPI schema would then forbid the tag that stands beside them.
+pub fn strict_variant<T: DeserializeOwned, E: Error>(value: Value) -> Result<T, E> {
+    let known = field_names::<T>();
+    if let Some(obj) = value.as_object()
+        && let Some(extra) = obj.keys().find(|k| !known.contains(&k.as_str()))
+    {
+        let msg = if known.is_empty() {
+            format!("unknown field `{extra}`: this takes no options")
+        } else {
+            format!(
+                "unknown field `{extra}`, expected one of: {}",
+                known.join(", ")
+            )
+        };
+        return Err(nested(extra, msg));
+    }
+    variant(value)
+}
+
+/// The field names a struct deserialises, read from what it asks of a deserializer.
+pub fn field_names<T: DeserializeOwned>() -> &'static [&'static str] {
+    let mut fields: &'static [&'static str] = &[];
+    let _ = T::deserialize(Introspect(&mut fields));
+    fields
+}
+
+struct Introspect<'a>(&'a mut &'static [&'static str]);
+
+impl<'de> serde::Deserializer<'de> for Introspect<'_> {
+    type Error = serde::de::value::Error;
+
+    fn deserialize_struct<V: serde::de::Visitor<'de>>(
+        self,
+        _name: &'static str,
+        fields: &'static [&'static str],
+        _visitor: V,
+    ) -> Result<V::Value, Self::Error> {
+        *self.0 = fields;
+        Err(Error::custom("introspection only"))
+    }
+
+    fn deserialize_any<V: serde::de::Visitor<'de>>(self, _: V) -> Result<V::Value, Self::Error> {
+        Err(Error::custom("introspection only"))
+    }
+
+    serde::forward_to_deserialize_any! {
+        bool i8 i16 i32 i64 i128 u8 u16 u32 u64 u128 f32 f64 char str string bytes byte_buf
+        option unit unit_struct newtype_struct seq tuple tuple_struct map enum identifier
+        ignored_any
+    }
+}
+
 /// An unknown tag value, reported at the tag field.
 pub fn unknown<E: Error>(tag: &str, got: &str, variants: &[&str]) -> E {
     nested(
         tag,
-        format!("unknown {tag} `{got}`, expected one of: {}", variants.join(", ")),
+        format!(
+            "unknown {tag} `{got}`, expected one of: {}",
+            variants.join(", ")
+        ),
     )
 }
 

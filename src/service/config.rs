@@ -41,14 +41,14 @@ impl Config {
 
     pub fn from_lookup(get: impl Fn(&str) -> Option<String>) -> Result<Self, String> {
         let d = Config::default();
-        fn num<T: std::str::FromStr>(
+        fn num<T>(
             get: &impl Fn(&str) -> Option<String>,
             key: &str,
             default: T,
             min: T,
         ) -> Result<T, String>
         where
-            T: PartialOrd + std::fmt::Display,
+            T: std::str::FromStr + PartialOrd + std::fmt::Display,
         {
             match get(key) {
                 None => Ok(default),
@@ -61,7 +61,9 @@ impl Config {
         let log_json = match get("WHIRL_LOG_FORMAT").as_deref() {
             None | Some("text") => false,
             Some("json") => true,
-            Some(other) => return Err(format!("WHIRL_LOG_FORMAT={other:?}: expected text or json")),
+            Some(other) => {
+                return Err(format!("WHIRL_LOG_FORMAT={other:?}: expected text or json"));
+            }
         };
         Ok(Config {
             host: get("HOST").unwrap_or(d.host),

@@ -67,7 +67,12 @@ impl ApiError {
                     })
                     .collect(),
             ),
-            ApiError::Unsolvable(d) => ("unsolvable-model", "Model cannot be analysed", d.clone(), vec![]),
+            ApiError::Unsolvable(d) => (
+                "unsolvable-model",
+                "Model cannot be analysed",
+                d.clone(),
+                vec![],
+            ),
             ApiError::TooLarge(limit) => (
                 "payload-too-large",
                 "Request body too large",
@@ -77,7 +82,9 @@ impl ApiError {
             ApiError::Busy => (
                 "busy",
                 "Service busy",
-                format!("all workers are busy and the queue is full; retry in {RETRY_AFTER_SECONDS} s"),
+                format!(
+                    "all workers are busy and the queue is full; retry in {RETRY_AFTER_SECONDS} s"
+                ),
                 vec![],
             ),
             ApiError::NotFound(d) => ("not-found", "Not found", d.clone(), vec![]),

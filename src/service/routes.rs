@@ -10,6 +10,7 @@ use super::error::ApiError;
 use super::json::ApiJson;
 use crate::analysis;
 use crate::damping::DampedModel;
+use crate::model::Invalid;
 use crate::model::api::{
     CampbellResponse, DampingInput, ModalRequest, ModalResponse, Problem, RotorInput,
     StabilityResponse, Status, SweepRequest,
@@ -18,7 +19,6 @@ use crate::model::damping::DampingModel;
 use crate::model::error::non_negative;
 use crate::model::rotor::Rotor;
 use crate::model::speeds::SpeedGrid;
-use crate::model::Invalid;
 use crate::system::RotorSystem;
 
 /// Liveness: 200 while the process lives.
@@ -37,11 +37,18 @@ pub async fn healthz() -> Json<Status> {
         (status = 503, description = "Queue full", body = Status)))]
 pub async fn readyz(State(st): State<AppState>) -> (StatusCode, Json<Status>) {
     if st.pool.ready() {
-        (StatusCode::OK, Json(Status { status: "ready".into() }))
+        (
+            StatusCode::OK,
+            Json(Status {
+                status: "ready".into(),
+            }),
+        )
     } else {
         (
             StatusCode::SERVICE_UNAVAILABLE,
-            Json(Status { status: "busy".into() }),
+            Json(Status {
+                status: "busy".into(),
+            }),
         )
     }
 }
@@ -190,7 +197,7 @@ fn validate_sweep(st: &AppState, req: &SweepRequest) -> Result<(Parsed, SpeedGri
 /// Assembles the rotor and builds its damping model (on the worker pool: may solve eigenproblems).
 fn build(p: &Parsed) -> Result<(RotorSystem, DampedModel), ApiError> {
     let system = RotorSystem::assemble(&p.rotor);
-    let model = DampedModel::build(&system, &p.damping)
-        .map_err(|e| ApiError::Unsolvable(e.to_string()))?;
+    let model =
+        DampedModel::build(&system, &p.damping).map_err(|e| ApiError::Unsolvable(e.to_string()))?;
     Ok((system, model))
 }

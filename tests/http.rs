@@ -1,0 +1,420 @@
+//! The service driven in process (no socket): the paper's numbers through HTTP, every error
+//! class, the OpenAPI document against the committed one, and the bundled examples.
+
+mod common;
+
+use axum::Router;
+use axum::body::Body;
+use axum::http::{Request, StatusCode, header};
+use common::assert_printed;
+use http_body_util::BodyExt;
+use serde_json::{Value, json};
+use tower::ServiceExt;
+use whirl::service::{Config, app};
+
+fn test_app() -> Router {
+    app(Config::default())
+}
+
+async fn send(
+    app: Router,
+    method: &str,
+    uri: &str,
+    body: Option<Vec<u8>>,
+) -> (StatusCode, String, Vec<u8>) {
+    let req = Request::builder()
+        .method(method)
+        .uri(uri)
+        .header(header::CONTENT_TYPE, "application/json")
+        .body(body.map(Body::from).unwrap_or_else(Body::empty))
+        .unwrap();
+    let resp = app.oneshot(req).await.unwrap();
+    let status = resp.status();
+    let ctype = resp
+        .headers()
+        .get(header::CONTENT_TYPE)
+        .map(|v| v.to_str().unwrap().to_string())
+        .unwrap_or_default();
+    let bytes = resp
+        .into_body()
+        .collect()
+        .await
+        .unwrap()
+        .to_bytes()
+        .to_vec();
+    (status, ctype, bytes)
+}
+
+async fn post(uri: &str, body: Value) -> (StatusCode, Value) {
+    let (status, _, bytes) =
+        send(test_app(), "POST", uri, Some(body.to_string().into_bytes())).await;
+    (status, serde_json::from_slice(&bytes).expect("JSON body"))
+}
+
+fn nondimensional(eta_r: f64, eta_n: f64) -> Value {
+    json!({"type": "jeffcott", "mass": 1.0, "stiffness": 1.0,
+           "loss_factor_rotating": eta_r, "loss_factor_nonrotating": eta_n})
+}
+
+fn poles_of<'a>(v: &'a Value, whirl: &str) -> Vec<&'a Value> {
+    v["poles"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|p| p["whirl"] == whirl)
+        .collect()
+}
+
+fn num(v: &Value) -> f64 {
+    v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
+}
+
+#[tokio::test]
+async fn nvd_jeffcott_poles_through_http_match_the_paper() {
+    let nvd = json!({"model": "nonviscous", "rotating": {"branches": 4, "spacing": 10}});
+    let (status, v) = post(
+        "/v1/modal",
+        json!({"rotor": nondimensional(0.01, 0.0), "damping": nvd, "speed": 0.0}),
+    )
+    .await;
+    assert_eq!(status, StatusCode::OK, "{v}");
+    let f = poles_of(&v, "forward");
+    assert_printed(num(&f[0]["decay_rate"]), "-0.0044", "forward decay rate");
+    assert_printed(num(&f[0]["frequency"]), "1.0152", "forward frequency");
+    let internal: Vec<f64> = poles_of(&v, "internal")
+        .iter()
+        .map(|p| num(&p["decay_rate"]))
+        .collect();
+    for (x, p) in internal
+        .iter()
+        .zip(["-31.6222", "-3.1584", "-0.3124", "-0.0311"])
+    {
+        assert_printed(*x, p, "internal pole");
+    }
+    assert_eq!(v["states"], 6);
+    assert_eq!(v["natural_frequencies"], json!([1.0]));
+
+    let (_, v) = post(
+        "/v1/modal",
+        json!({"rotor": nondimensional(0.01, 0.0), "damping": nvd, "speed": 4.0}),
+    )
+    .await;
+    let f = poles_of(&v, "forward");
+    let b = poles_of(&v, "backward");
+    assert_printed(num(&f[0]["decay_rate"]), "0.0049", "forward decay rate");
+    assert_printed(num(&f[0]["frequency"]), "1.0183", "forward frequency");
+    assert_printed(num(&b[0]["decay_rate"]), "-0.0048", "backward decay rate");
+    assert_printed(num(&b[0]["frequency"]), "-1.0202", "backward frequency");
+    let internal = poles_of(&v, "internal");
+    let printed = [
+        ("-31.6223", "4.0001"),
+        ("-3.1626", "4.0016"),
+        ("-0.3165", "4.0000"),
+        ("-0.0317", "4.0000"),
+    ];
+    for (p, (re, im)) in internal.iter().zip(printed) {
+        assert_printed(num(&p["decay_rate"]), re, "internal decay rate");
+        assert_printed(num(&p["frequency"]), im, "internal frequency");
+    }
+    // Derived quantities are consistent with the pole.
+    let (s, w) = (num(&f[0]["decay_rate"]), num(&f[0]["frequency"]));
+    assert!((num(&f[0]["damping_ratio"]) + s / s.hypot(w)).abs() < 1e-15);
+    assert!((num(&f[0]["log_decrement"]) + 2.0 * std::f64::consts::PI * s / w).abs() < 1e-14);
+}
+
+#[tokio::test]
+async fn stability_through_http_gives_eq_10_and_the_range() {
+    let (status, v) = post(
+        "/v1/stability",
+        json!({"rotor": nondimensional(0.01, 0.025), "damping": {"model": "equivalent"},
+               "speeds": {"start": 0.5, "stop": 6.0, "count": 12}}),
+    )
+    .await;
+    assert_eq!(status, StatusCode::OK, "{v}");
+    assert!((num(&v["threshold"]) - 3.5).abs() <= 1e-6 * 3.5, "{v}");
+    assert_eq!(v["whirl"], "forward");
+    assert_eq!(v["mode"], 1);
+    assert_eq!(v["range"], json!([0.5, 6.0]));
+    // Hysteretic with eta_n > eta_r: stable at all speeds of the range.
+    let (_, v) = post(
+        "/v1/stability",
+        json!({"rotor": nondimensional(0.01, 0.025), "damping": {"model": "hysteretic"},
+               "speeds": [0.0, 1.0, 2.0, 6.0]}),
+    )
+    .await;
+    assert_eq!(v["threshold"], Value::Null);
+}
+
+#[tokio::test]
+async fn campbell_through_http_has_tracked_branches_critical_speed_and_threshold() {
+    let (status, v) = post(
+        "/v1/campbell",
+        json!({"rotor": nondimensional(0.01, 0.0), "damping": {"model": "hysteretic"},
+               "speeds": {"start": 0.0, "stop": 2.0, "count": 41}}),
+    )
+    .await;
+    assert_eq!(status, StatusCode::OK, "{v}");
+    let branches = v["branches"].as_array().unwrap();
+    assert_eq!(branches.len(), 2);
+    let fwd = branches.iter().find(|b| b["whirl"] == "forward").unwrap();
+    assert_eq!(fwd["mode"], 1);
+    let d = fwd["decay_rate"].as_array().unwrap();
+    // H: -eta_r/2 below the critical speed, +eta_r/2 above (eta_n = 0): a step, unstable.
+    assert!((num(&d[10]) + 0.005).abs() < 1e-6);
+    assert!((num(&d[30]) - 0.005).abs() < 1e-6);
+    let crit = v["critical_speeds"].as_array().unwrap();
+    assert_eq!(crit.len(), 1);
+    assert!((num(&crit[0]) - 1.0).abs() < 1e-4);
+    // The threshold of the H Jeffcott with eta_n = 0 coincides with the critical speed.
+    assert!((num(&v["threshold"]) - 1.0).abs() < 1e-4);
+}
+
+async fn problem(uri: &str, body: Vec<u8>) -> (StatusCode, Value) {
+    let (status, ctype, bytes) = send(test_app(), "POST", uri, Some(body)).await;
+    assert_eq!(ctype, "application/problem+json", "status {status}");
+    let v: Value = serde_json::from_slice(&bytes).unwrap();
+    assert_eq!(v["status"], status.as_u16());
+    for k in ["type", "title", "detail"] {
+        assert!(v[k].is_string(), "{k} in {v}");
+    }
+    (status, v)
+}
+
+fn paths(v: &Value) -> Vec<String> {
+    v["errors"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|e| e["path"].as_str().unwrap().to_string())
+        .collect()
+}
+
+#[tokio::test]
+async fn malformed_json_is_400() {
+    let (status, _) = problem("/v1/modal", b"{\"rotor\": {\"type\": \"jeffcott\"".to_vec()).await;
+    assert_eq!(status, StatusCode::BAD_REQUEST);
+    let (status, _) = problem("/v1/modal", b"{} trailing".to_vec()).await;
+    assert_eq!(status, StatusCode::BAD_REQUEST);
+    let (status, _) = problem("/v1/modal", b"{\"speed\": NaN}".to_vec()).await;
+    assert_eq!(status, StatusCode::BAD_REQUEST, "NaN is not JSON");
+}
+
+#[tokio::test]
+async fn invalid_values_are_422_with_the_path_of_each_field() {
+    let body = json!({
+        "rotor": {"type": "jeffcott", "mass": 0.0, "stiffness": 1.0,
+                  "loss_factor_rotating": 1.0, "loss_factor_nonrotating": -0.1,
+                  "damping_rotating": -1.0},
+        "damping": {"model": "nonviscous", "rotating": {"branches": 13},
+                    "nonrotating": {"branches": 0, "spacing": 2}},
+        "speeds": {"start": 0.0, "stop": 1.0, "count": 1}
+    });
+    let (status, v) = problem("/v1/campbell", body.to_string().into_bytes()).await;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    let p = paths(&v);
+    for expected in [
+        "rotor.mass",
+        "rotor.loss_factor_rotating",
+        "rotor.loss_factor_nonrotating",
+        "rotor.damping_rotating",
+        "damping.rotating.branches",
+        "damping.nonrotating.branches",
+        "speeds.count",
+    ] {
+        assert!(
+            p.iter().any(|x| x == expected),
+            "{expected} missing from {p:?}"
+        );
+    }
+}
+
+#[tokio::test]
+async fn each_error_class_names_its_field() {
+    let cases: Vec<(&str, Value, &str)> = vec![
+        (
+            "/v1/modal",
+            json!({"rotor": {"type": "jeffcott", "mass": -2.0, "stiffness": 1.0}, "damping": {"model": "viscous"}}),
+            "rotor.mass",
+        ),
+        (
+            "/v1/modal",
+            json!({"rotor": nondimensional(1.5, 0.0), "damping": {"model": "viscous"}}),
+            "rotor.loss_factor_rotating",
+        ),
+        (
+            "/v1/modal",
+            json!({"rotor": nondimensional(0.0, 0.0), "damping": {"model": "nonviscous", "rotating": {"branches": 0}}}),
+            "damping.rotating.branches",
+        ),
+        (
+            "/v1/modal",
+            json!({"rotor": nondimensional(0.0, 0.0), "damping": {"model": "nonviscous", "nonrotating": {"spacing": 2.0}}}),
+            "damping.nonrotating.spacing",
+        ),
+        (
+            "/v1/modal",
+            json!({"rotor": nondimensional(0.0, 0.0), "damping": {"model": "nonviscous", "rotating": {"branches": 2, "nu": [1.0]}}}),
+            "damping.rotating.nu",
+        ),
+        (
+            "/v1/modal",
+            json!({"rotor": nondimensional(0.0, 0.0), "damping": {"model": "equivalent", "modes": 2}}),
+            "damping.modes",
+        ),
+        (
+            "/v1/modal",
+            json!({"rotor": nondimensional(0.0, 0.0), "damping": {"model": "viscous"}, "speed": -1.0}),
+            "speed",
+        ),
+        (
+            "/v1/modal",
+            json!({"rotor": {"type": "jeffcott", "mass": "heavy", "stiffness": 1.0}, "damping": {"model": "viscous"}}),
+            "rotor.mass",
+        ),
+        (
+            "/v1/modal",
+            json!({"rotor": {"type": "jeffcott", "mass": 1.0, "stiffnes": 1.0}, "damping": {"model": "viscous"}}),
+            "rotor.stiffnes",
+        ),
+        (
+            "/v1/modal",
+            json!({"rotor": {"type": "disk"}, "damping": {"model": "viscous"}}),
+            "rotor.type",
+        ),
+        (
+            "/v1/modal",
+            json!({"rotor": nondimensional(0.0, 0.0), "damping": {"model": "magic"}}),
+            "damping.model",
+        ),
+        (
+            "/v1/campbell",
+            json!({"rotor": nondimensional(0.0, 0.0), "damping": {"model": "viscous"}, "speeds": {"start": 2.0, "stop": 1.0, "count": 5}}),
+            "speeds.stop",
+        ),
+        (
+            "/v1/campbell",
+            json!({"rotor": nondimensional(0.0, 0.0), "damping": {"model": "viscous"}, "speeds": [0.0, 2.0, 1.0]}),
+            "speeds[2]",
+        ),
+        (
+            "/v1/campbell",
+            json!({"rotor": nondimensional(0.0, 0.0), "damping": {"model": "viscous"}, "speeds": {"start": 0.0, "stop": 1.0, "count": 1000000}}),
+            "speeds.count",
+        ),
+        (
+            "/v1/stability",
+            json!({"rotor": nondimensional(0.0, 0.0), "damping": {"model": "viscous"}, "speeds": [1.0]}),
+            "speeds",
+        ),
+    ];
+    for (uri, body, path) in cases {
+        let (status, v) = problem(uri, body.to_string().into_bytes()).await;
+        assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{body}: {v}");
+        assert!(paths(&v).iter().any(|p| p == path), "{path} not in {v}");
+    }
+    // A number that is valid JSON but not a finite double.
+    let raw = br#"{"rotor": {"type": "jeffcott", "mass": 1e999, "stiffness": 1}, "damping": {"model": "viscous"}}"#;
+    let (status, v) = problem("/v1/modal", raw.to_vec()).await;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{v}");
+}
+
+#[tokio::test]
+async fn oversized_body_is_413_and_unknown_path_is_404() {
+    let small = app(Config {
+        max_body_bytes: 1024,
+        ..Config::default()
+    });
+    let big = format!("{{\"pad\": \"{}\"}}", "x".repeat(4096));
+    let (status, ctype, _) = send(small, "POST", "/v1/modal", Some(big.into_bytes())).await;
+    assert_eq!(status, StatusCode::PAYLOAD_TOO_LARGE);
+    assert_eq!(ctype, "application/problem+json");
+    let (status, ctype, _) = send(test_app(), "GET", "/v2/everything", None).await;
+    assert_eq!(status, StatusCode::NOT_FOUND);
+    assert_eq!(ctype, "application/problem+json");
+}
+
+#[tokio::test]
+async fn no_nan_leaks_when_the_numbers_overflow() {
+    // Valid fields whose product overflows: an error, never a NaN in a 200.
+    let body = json!({"rotor": {"type": "jeffcott", "mass": 1e-300, "stiffness": 1e300}, "damping": {"model": "viscous"}});
+    let (status, _, bytes) = send(
+        test_app(),
+        "POST",
+        "/v1/modal",
+        Some(body.to_string().into_bytes()),
+    )
+    .await;
+    let text = String::from_utf8(bytes).unwrap();
+    assert!(
+        !text.contains("NaN") && !text.contains("null,\"frequency\""),
+        "{text}"
+    );
+    assert!(
+        status == StatusCode::UNPROCESSABLE_ENTITY || status == StatusCode::OK,
+        "{status}: {text}"
+    );
+}
+
+#[tokio::test]
+async fn health_readiness_and_docs() {
+    let (status, _, body) = send(test_app(), "GET", "/healthz", None).await;
+    assert_eq!(status, StatusCode::OK);
+    assert_eq!(
+        serde_json::from_slice::<Value>(&body).unwrap(),
+        json!({"status": "ok"})
+    );
+    let (status, _, _) = send(test_app(), "GET", "/readyz", None).await;
+    assert_eq!(status, StatusCode::OK);
+    let (status, ctype, body) = send(test_app(), "GET", "/docs/", None).await;
+    assert_eq!(status, StatusCode::OK);
+    assert!(ctype.starts_with("text/html"), "{ctype}");
+    assert!(String::from_utf8_lossy(&body).contains("swagger"));
+    // The UI's assets are served from the binary: no internet needed.
+    let (status, _, body) = send(test_app(), "GET", "/docs/swagger-ui-bundle.js", None).await;
+    assert_eq!(status, StatusCode::OK);
+    assert!(body.len() > 100_000);
+}
+
+#[tokio::test]
+async fn served_openapi_is_the_committed_document() {
+    let (status, _, body) = send(test_app(), "GET", "/openapi.json", None).await;
+    assert_eq!(status, StatusCode::OK);
+    let served: Value = serde_json::from_slice(&body).unwrap();
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/openapi/openapi.json");
+    let committed: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    assert!(
+        served == committed,
+        "openapi/openapi.json is stale: regenerate it with \
+         `cargo run --release -- openapi > openapi/openapi.json`"
+    );
+    assert_eq!(served["openapi"], "3.1.0");
+    for p in [
+        "/healthz",
+        "/readyz",
+        "/v1/modal",
+        "/v1/campbell",
+        "/v1/stability",
+    ] {
+        assert!(served["paths"][p].is_object(), "{p} missing");
+    }
+}
+
+#[tokio::test]
+async fn every_bundled_example_runs() {
+    // examples/<name>.<endpoint>.json is POSTed to /v1/<endpoint>, as in the README.
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/examples");
+    let mut count = 0;
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        let name = path.file_name().unwrap().to_str().unwrap().to_string();
+        let Some(stem) = name.strip_suffix(".json") else {
+            continue;
+        };
+        let endpoint = stem.rsplit('.').next().unwrap();
+        let body: Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+        let (status, v) = post(&format!("/v1/{endpoint}"), body).await;
+        assert_eq!(status, StatusCode::OK, "{name}: {v}");
+        count += 1;
+    }
+    assert!(count >= 5);
+}
