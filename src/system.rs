@@ -14,7 +14,7 @@
 //! `omega` in the supports. The bracketed imaginary stiffness is how the damping models start;
 //! each model in `damping` turns it into something an analysis can solve.
 
-use crate::linalg::RMat;
+use crate::linalg::{LinalgError, RMat};
 use crate::model::rotor::{Jeffcott, Rotor};
 
 /// What a degree of freedom of the assembled system is.
@@ -52,10 +52,12 @@ pub struct RotorSystem {
 }
 
 impl RotorSystem {
-    /// Assembles a validated rotor.
-    pub fn assemble(rotor: &Rotor) -> Self {
+    /// Assembles (and reduces, if asked) a validated rotor.
+    pub fn assemble(rotor: &Rotor) -> Result<Self, LinalgError> {
         match rotor {
-            Rotor::Jeffcott(j) => Self::jeffcott(j),
+            Rotor::Jeffcott(j) => Ok(Self::jeffcott(j)),
+            Rotor::Beam(b) => crate::fem::assembly::beam(b),
+            Rotor::Matrices(m) => Ok(crate::fem::assembly::matrices(m)),
         }
     }
 

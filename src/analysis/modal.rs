@@ -3,8 +3,7 @@
 use super::AnalysisError;
 use super::poles::{PoleSet, poles_at};
 use crate::damping::DampedModel;
-use crate::linalg;
-use crate::system::RotorSystem;
+use crate::system::{Dof, RotorSystem};
 
 /// Result of a modal analysis.
 #[derive(Debug, Clone)]
@@ -14,6 +13,8 @@ pub struct ModalResult {
     pub natural_frequencies: Vec<f64>,
     /// Size of the first-order eigenproblem.
     pub states: usize,
+    /// What each entry of a pole's shape is.
+    pub dofs: Vec<Dof>,
 }
 
 pub fn modal(
@@ -23,17 +24,8 @@ pub fn modal(
 ) -> Result<ModalResult, AnalysisError> {
     Ok(ModalResult {
         poles: poles_at(model, speed)?,
-        natural_frequencies: natural_frequencies(system)?,
+        natural_frequencies: model.natural_frequencies.clone(),
         states: model.states(),
+        dofs: system.dofs.clone(),
     })
-}
-
-/// `sqrt` of the eigenvalues of `(K, M)`; a rigid-body mode gives 0.
-pub fn natural_frequencies(system: &RotorSystem) -> Result<Vec<f64>, AnalysisError> {
-    let modes = linalg::symmetric_modes(&system.stiffness(), &system.mass)?;
-    Ok(modes
-        .omega_squared
-        .iter()
-        .map(|w2| w2.max(0.0).sqrt())
-        .collect())
 }

@@ -5,8 +5,8 @@
 //! elastic energy lies (in the branch springs, not in the rotor), which does not depend on the
 //! units of the internal coordinates. Rotor poles whirl `forward` (`omega >= 0`) or `backward`.
 
-use crate::damping::DampedModel;
 use crate::damping::state::StateModel;
+use crate::damping::{DampedModel, ModelKind};
 use crate::linalg::{self, LinalgError, c64};
 
 /// Direction of whirl of a pole.
@@ -109,8 +109,8 @@ impl PoleSet {
 pub fn poles_at(model: &DampedModel, speed: f64) -> Result<PoleSet, LinalgError> {
     let (mut rotor, mut internal) = (vec![], vec![]);
     let n = model.dofs();
-    match model {
-        DampedModel::Linear(m) => {
+    match &model.kind {
+        ModelKind::Linear(m) => {
             let e = linalg::eigen(&m.at(speed))?;
             let mut scored: Vec<(f64, Pole)> = (0..e.values.len())
                 .map(|j| {
@@ -130,7 +130,7 @@ pub fn poles_at(model: &DampedModel, speed: f64) -> Result<PoleSet, LinalgError>
                 }
             }
         }
-        DampedModel::Hysteretic(signed) => {
+        ModelKind::Hysteretic(signed) => {
             for sm in signed {
                 let e = linalg::eigen(&sm.model.at(speed))?;
                 for j in 0..e.values.len() {

@@ -24,7 +24,15 @@ pub use state::{Branches, SecondOrder, StateModel};
 
 /// A rotor under one damping model, ready for eigenvalue analyses.
 #[derive(Debug, Clone)]
-pub enum DampedModel {
+pub struct DampedModel {
+    pub kind: ModelKind,
+    /// Undamped nonrotating natural frequencies, rad/s, ascending (all modes).
+    pub natural_frequencies: Vec<f64>,
+}
+
+/// The linear problem(s) a damping model poses.
+#[derive(Debug, Clone)]
+pub enum ModelKind {
     /// Viscous, equivalent and nonviscous models: one linear system.
     Linear(Box<StateModel>),
     /// The hysteretic model: one linear system per sign pair, roots filtered by consistency.
@@ -60,54 +68,54 @@ impl From<LinalgError> for DampingError {
 }
 
 impl DampedModel {
-    /// Builds the model. The modal basis (equivalent, nonviscous) is computed here, once.
+    /// Builds the model. The modal basis is computed once, here: it proves the rotor is held
+    /// (no rigid-body mode) for every model, and it is the basis of the equivalent and
+    /// nonviscous models.
     pub fn build(system: &RotorSystem, model: &DampingModel) -> Result<Self, DampingError> {
-        let viscous = SecondOrder::viscous(system);
-        match model {
-            DampingModel::Viscous => Ok(Self::Linear(Box::new(StateModel::new(
-                &viscous,
-                &Branches::none(system.n()),
-            )?))),
-            DampingModel::Hysteretic => Ok(Self::Hysteretic(hysteretic::signed_models(system)?)),
+        let all = ModalBasis::of(system)?;
+        let natural_frequencies = all.omega.clone();
+        let truncated = |modes: Option<usize>| match modes {
+            Some(k) => all.truncated(k),
+            None => all.clone(),
+        };
+        let n = system.n();
+        let kind = match model {
+            DampingModel::Viscous => ModelKind::Linear(Box::new(StateModel::new(
+                &SecondOrder::viscous(system),
+                &Branches::none(n),
+            )?)),
+            DampingModel::Hysteretic => ModelKind::Hysteretic(hysteretic::signed_models(system)?),
             DampingModel::Equivalent { modes } => {
-                let basis = basis(system, *modes)?;
-                let so = equivalent::second_order(system, &basis);
-                Ok(Self::Linear(Box::new(StateModel::new(
-                    &so,
-                    &Branches::none(system.n()),
-                )?)))
+                let so = equivalent::second_order(system, &truncated(*modes));
+                ModelKind::Linear(Box::new(StateModel::new(&so, &Branches::none(n))?))
             }
             DampingModel::Nonviscous(spec) => {
-                let basis = basis(system, spec.modes)?;
-                let branches = nonviscous::branches(system, &basis, spec);
-                Ok(Self::Linear(Box::new(StateModel::new(
-                    &viscous, &branches,
-                )?)))
+                let branches = nonviscous::branches(system, &truncated(spec.modes), spec);
+                ModelKind::Linear(Box::new(StateModel::new(
+                    &SecondOrder::viscous(system),
+                    &branches,
+                )?))
             }
-        }
+        };
+        Ok(DampedModel {
+            kind,
+            natural_frequencies,
+        })
     }
 
     /// Complex degrees of freedom of the rotor (not counting internal coordinates).
     pub fn dofs(&self) -> usize {
-        match self {
-            Self::Linear(m) => m.n(),
-            Self::Hysteretic(v) => v[0].model.n(),
+        match &self.kind {
+            ModelKind::Linear(m) => m.n(),
+            ModelKind::Hysteretic(v) => v[0].model.n(),
         }
     }
 
     /// Size of each first-order eigenproblem.
     pub fn states(&self) -> usize {
-        match self {
-            Self::Linear(m) => m.size(),
-            Self::Hysteretic(v) => v[0].model.size(),
+        match &self.kind {
+            ModelKind::Linear(m) => m.size(),
+            ModelKind::Hysteretic(v) => v[0].model.size(),
         }
     }
-}
-
-fn basis(system: &RotorSystem, modes: Option<usize>) -> Result<ModalBasis, ModalError> {
-    let all = ModalBasis::of(system)?;
-    Ok(match modes {
-        Some(k) => all.truncated(k),
-        None => all,
-    })
 }

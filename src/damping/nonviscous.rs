@@ -14,9 +14,9 @@
 //! back-transformation, exact when all modes are kept) the branch couples through `u = M phi_i`.
 //! A damper with zero loss adds no branches.
 
-use super::state::Branches;
+use super::state::{Branches, SecondOrder, StateModel};
 use crate::fem::modal::ModalBasis;
-use crate::linalg::{self, RMat};
+use crate::linalg::{self, LinalgError, RMat};
 use crate::model::damping::NonviscousSpec;
 use crate::system::RotorSystem;
 
@@ -132,10 +132,36 @@ pub fn collocation_gammas(m: usize, a: f64) -> Result<Vec<f64>, linalg::LinalgEr
     linalg::solve_real(&t, &vec![1.0; m])
 }
 
-/// All branches of the model on the rotor, in physical coordinates.
+/// All branches of the model on the rotor, in physical coordinates (the paper's
+/// back-transformed form): branch of mode `i` couples through `M phi_i`.
 pub fn branches(system: &RotorSystem, basis: &ModalBasis, spec: &NonviscousSpec) -> Branches {
-    let n = system.n();
-    let participation = basis.participation(&system.mass);
+    branches_on(&basis.participation(&system.mass), system, basis, spec)
+}
+
+/// The model in modal coordinates (paper eq. 28): `Phi^T (.) Phi` of the viscous rotor (the
+/// modal gyroscopic and damping matrices full), one damper pair per retained mode on its own
+/// modal coordinate. With all modes kept its poles are those of the physical form; with fewer,
+/// it is the modally truncated rotor.
+pub fn modal_form(
+    system: &RotorSystem,
+    basis: &ModalBasis,
+    spec: &NonviscousSpec,
+) -> Result<StateModel, LinalgError> {
+    let so = SecondOrder::viscous(system).project(&basis.phi);
+    let k = basis.len();
+    let identity = RMat::from_fn(k, k, |i, j| if i == j { 1.0 } else { 0.0 });
+    StateModel::new(&so, &branches_on(&identity, system, basis, spec))
+}
+
+/// Branches whose coordinate for mode `i` is `coupling[:, i]^T q`.
+fn branches_on(
+    coupling: &RMat,
+    system: &RotorSystem,
+    basis: &ModalBasis,
+    spec: &NonviscousSpec,
+) -> Branches {
+    let n = coupling.nrows();
+    let participation = coupling;
     let loss_n = basis.project(&system.hysteretic_nonrotating);
     let loss_r = basis.project(&system.hysteretic_rotating);
     let mut columns: Vec<usize> = vec![];

@@ -53,6 +53,21 @@ impl SecondOrder {
     pub fn n(&self) -> usize {
         self.mass.nrows()
     }
+
+    /// `Phi^T (.) Phi` of every matrix: the system in the coordinates `q = Phi eta`.
+    pub fn project(&self, phi: &RMat) -> SecondOrder {
+        let pc = linalg::to_complex(phi);
+        let pt = pc.transpose().to_owned();
+        let c = |a: &CMat| &pt * a * &pc;
+        SecondOrder {
+            mass: phi.transpose() * &self.mass * phi,
+            d0: c(&self.d0),
+            d1: c(&self.d1),
+            k0: c(&self.k0),
+            k1: c(&self.k1),
+            stiffness: phi.transpose() * &self.stiffness * phi,
+        }
+    }
 }
 
 /// Maxwell branches on massless internal coordinates (see the module docs).

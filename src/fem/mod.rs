@@ -1,4 +1,7 @@
-//! Finite-element side of the model: modal bases (and, as rotors grow, element matrices,
-//! assembly and Guyan reduction).
+//! Finite elements: the Timoshenko shaft element, assembly of a beam rotor, Guyan reduction,
+//! and the undamped modal basis.
 
+pub mod assembly;
+pub mod element;
+pub mod guyan;
 pub mod modal;

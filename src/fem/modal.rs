@@ -49,7 +49,7 @@ impl ModalBasis {
         // damping divide by w, so refuse it here rather than produce infinities.
         let largest = modes.omega_squared.iter().cloned().fold(0.0, f64::max);
         for (i, &w2) in modes.omega_squared.iter().enumerate() {
-            if w2 <= 1e-10 * largest || w2 <= 0.0 {
+            if w2 <= 1e-11 * largest || w2 <= 0.0 {
                 return Err(ModalError::RigidBody {
                     mode: i + 1,
                     omega_squared: w2,

@@ -156,6 +156,24 @@ pub fn solve_real(a: &RMat, b: &[f64]) -> Result<Vec<f64>, LinalgError> {
     }
 }
 
+/// Solves `A X = B` for a dense real square `A` (partial pivoting LU).
+pub fn solve_real_matrix(a: &RMat, b: &RMat) -> Result<RMat, LinalgError> {
+    if a.nrows() == 0 {
+        return Ok(RMat::zeros(0, b.ncols()));
+    }
+    let x = a.partial_piv_lu().solve(b);
+    if all_finite_r(&x) {
+        Ok(x)
+    } else {
+        Err(LinalgError::NonFinite)
+    }
+}
+
+/// Whether a symmetric matrix is positive definite (Cholesky succeeds).
+pub fn is_positive_definite(a: &RMat) -> bool {
+    all_finite_r(a) && a.llt(Side::Lower).is_ok()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

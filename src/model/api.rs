@@ -16,14 +16,20 @@ pub enum RotorInput {
     /// this is the paper's nondimensional rotor: speeds and poles come out in units of
     /// `sqrt(k/m)`.
     Jeffcott(JeffcottInput),
+    /// A shaft of Timoshenko beam elements with rigid disks on isotropic supports.
+    Beam(BeamInput),
+    /// The rotor given directly as matrices in complex coordinates.
+    Matrices(MatricesInput),
 }
 
 impl<'de> Deserialize<'de> for RotorInput {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        const TYPES: &[&str] = &["jeffcott"];
+        const TYPES: &[&str] = &["jeffcott", "beam", "matrices"];
         let (tag, rest) = split_tag(Value::deserialize(d)?, "type", TYPES)?;
         match tag.as_str() {
             "jeffcott" => strict_variant(rest).map(RotorInput::Jeffcott),
+            "beam" => strict_variant(rest).map(RotorInput::Beam),
+            "matrices" => strict_variant(rest).map(RotorInput::Matrices),
             other => Err(unknown("type", other, TYPES)),
         }
     }
@@ -48,6 +54,133 @@ pub struct JeffcottInput {
     /// Viscous nonrotating damping, N s/m (>= 0). Kept under every damping model.
     #[serde(default)]
     pub damping_nonrotating: f64,
+}
+
+/// Finite-element rotor. Nodes are numbered from 0 at the left end; each shaft segment adds
+/// `elements` nodes.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct BeamInput {
+    /// Materials by name.
+    pub materials: std::collections::BTreeMap<String, MaterialInput>,
+    /// Consecutive shaft segments, from the left end.
+    pub shaft: Vec<SegmentInput>,
+    /// Rigid disks.
+    #[serde(default)]
+    pub disks: Vec<DiskInput>,
+    /// Isotropic, nonrotating supports (bearings) on translations.
+    #[serde(default)]
+    pub supports: Vec<SupportInput>,
+    /// Optional Guyan reduction: `{"guyan": "translations"}` keeps the translations and
+    /// condenses the rotations.
+    #[serde(default)]
+    pub reduction: Option<ReductionInput>,
+}
+
+/// An isotropic material.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialInput {
+    /// Young's modulus, Pa (> 0).
+    pub young_modulus: f64,
+    /// Density, kg/m^3 (> 0).
+    pub density: f64,
+    /// Poisson's ratio, in (-1, 0.5).
+    pub poisson_ratio: f64,
+    /// Loss factor of the material: rotating hysteretic damping, in [0, 1).
+    #[serde(default)]
+    pub loss_factor: f64,
+}
+
+/// A uniform, hollow or solid, shaft segment.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SegmentInput {
+    /// Length, m (> 0).
+    pub length: f64,
+    /// Outer diameter, m (> 0).
+    pub outer_diameter: f64,
+    /// Inner diameter, m (>= 0, < outer diameter; default 0: solid).
+    #[serde(default)]
+    pub inner_diameter: f64,
+    /// Name of a material in `materials`.
+    pub material: String,
+    /// Number of equal elements the segment is split into (default 1).
+    #[serde(default)]
+    pub elements: Option<i64>,
+    /// Shear factor chi = 1/kappa (default: Cowper's formula for the annulus).
+    #[serde(default)]
+    pub shear_factor: Option<f64>,
+}
+
+/// A rigid disk at a node.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct DiskInput {
+    pub node: i64,
+    /// Mass, kg (>= 0).
+    pub mass: f64,
+    /// Polar moment of inertia, kg m^2 (>= 0).
+    #[serde(default)]
+    pub polar_inertia: f64,
+    /// Transverse (diametral) moment of inertia, kg m^2 (>= 0).
+    #[serde(default)]
+    pub transverse_inertia: f64,
+}
+
+/// An isotropic support (bearing) acting on the translation of a node; nonrotating.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SupportInput {
+    pub node: i64,
+    /// Stiffness, N/m (>= 0).
+    pub stiffness: f64,
+    /// Viscous damping, N s/m (>= 0).
+    #[serde(default)]
+    pub damping: f64,
+    /// Loss factor of the support: nonrotating hysteretic damping, in [0, 1).
+    #[serde(default)]
+    pub loss_factor: f64,
+}
+
+/// Model reduction.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ReductionInput {
+    /// Guyan (static) condensation; `translations` keeps the translation of every node.
+    pub guyan: GuyanKeep,
+}
+
+/// Which degrees of freedom Guyan reduction keeps.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, ToSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum GuyanKeep {
+    Translations,
+}
+
+/// The rotor as matrices in complex coordinates (`q = x + i y` per degree of freedom):
+/// `M q'' + (C_n + C_r - i Omega G) q' + (K - i Omega C_r + i K''_n + i K''_r) q = F`.
+/// All matrices are square, of one size, real and symmetric; `mass` positive definite.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct MatricesInput {
+    /// Mass matrix, rows of numbers.
+    pub mass: Vec<Vec<f64>>,
+    /// Stiffness matrix.
+    pub stiffness: Vec<Vec<f64>>,
+    /// Gyroscopic (polar inertia) matrix (default zero).
+    #[serde(default)]
+    pub gyroscopic: Option<Vec<Vec<f64>>>,
+    /// Rotating viscous damping C_r (default zero).
+    #[serde(default)]
+    pub damping_rotating: Option<Vec<Vec<f64>>>,
+    /// Nonrotating viscous damping C_n (default zero).
+    #[serde(default)]
+    pub damping_nonrotating: Option<Vec<Vec<f64>>>,
+    /// Rotating imaginary stiffness K''_r (default zero).
+    #[serde(default)]
+    pub hysteretic_rotating: Option<Vec<Vec<f64>>>,
+    /// Nonrotating imaginary stiffness K''_n (default zero).
+    #[serde(default)]
+    pub hysteretic_nonrotating: Option<Vec<Vec<f64>>>,
 }
 
 /// How hysteretic damping (the loss factors) is modelled, tagged by `model`. Viscous damping
@@ -202,6 +335,18 @@ pub struct Pole {
     pub damping_ratio: f64,
     /// `-2 pi sigma / |omega|`; null for a pole that does not oscillate.
     pub log_decrement: Option<f64>,
+    /// Mode shape (`modal` only, rotor poles): the complex translation `x + i y` of each node,
+    /// scaled so that the largest is 1 and real.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shape: Option<Vec<NodeDisplacement>>,
+}
+
+/// Complex translation of a node in a mode shape.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct NodeDisplacement {
+    pub node: usize,
+    pub re: f64,
+    pub im: f64,
 }
 
 /// Answer of `POST /v1/modal`.

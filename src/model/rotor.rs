@@ -1,27 +1,376 @@
 //! Validated rotors. A value of these types exists only if it is physically valid.
 
-use super::api::{JeffcottInput, RotorInput};
-use super::error::{Invalid, loss_factor, non_negative, positive};
+use super::api::{BeamInput, GuyanKeep, JeffcottInput, MatricesInput, RotorInput};
+use super::error::{Invalid, finite, loss_factor, non_negative, positive};
+use crate::linalg::{self, RMat};
+
+/// Size limits of a model (explicit, configurable, enforced at validation).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Limits {
+    /// Most complex degrees of freedom of the assembled rotor, before reduction.
+    pub max_dofs: usize,
+}
+
+impl Default for Limits {
+    fn default() -> Self {
+        Limits { max_dofs: 1000 }
+    }
+}
 
 /// A valid rotor.
 #[derive(Debug, Clone)]
 pub enum Rotor {
     Jeffcott(Jeffcott),
+    Beam(BeamRotor),
+    Matrices(MatrixRotor),
 }
 
 impl Rotor {
     /// Validates the `rotor` field of a request; paths are prefixed with `rotor.`.
-    pub fn parse(input: &RotorInput) -> Result<Self, Invalid> {
+    pub fn parse(input: &RotorInput, limits: &Limits) -> Result<Self, Invalid> {
         match input {
             RotorInput::Jeffcott(j) => Jeffcott::parse(j, "rotor").map(Rotor::Jeffcott),
+            RotorInput::Beam(b) => BeamRotor::parse(b, limits).map(Rotor::Beam),
+            RotorInput::Matrices(m) => MatrixRotor::parse(m, limits).map(Rotor::Matrices),
         }
     }
 
-    /// Complex degrees of freedom of the assembled system.
+    /// Complex degrees of freedom of the assembled (and reduced) system.
     pub fn dof_count(&self) -> usize {
         match self {
             Rotor::Jeffcott(_) => 1,
+            Rotor::Beam(b) => {
+                if b.guyan.is_some() {
+                    b.nodes()
+                } else {
+                    2 * b.nodes()
+                }
+            }
+            Rotor::Matrices(m) => m.mass.nrows(),
         }
+    }
+}
+
+/// One shaft element, its section and material.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShaftElement {
+    pub length: f64,
+    pub outer_diameter: f64,
+    pub inner_diameter: f64,
+    pub young_modulus: f64,
+    pub density: f64,
+    pub poisson_ratio: f64,
+    /// Rotating hysteretic damping of the material.
+    pub loss_factor: f64,
+    /// `None`: Cowper's formula.
+    pub shear_factor: Option<f64>,
+}
+
+/// A rigid disk.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Disk {
+    pub node: usize,
+    pub mass: f64,
+    pub polar_inertia: f64,
+    pub transverse_inertia: f64,
+}
+
+/// An isotropic support on a translation.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Support {
+    pub node: usize,
+    pub stiffness: f64,
+    pub damping: f64,
+    pub loss_factor: f64,
+}
+
+/// A valid finite-element rotor: element `e` joins nodes `e` and `e + 1`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BeamRotor {
+    elements: Vec<ShaftElement>,
+    disks: Vec<Disk>,
+    supports: Vec<Support>,
+    guyan: Option<GuyanKeep>,
+}
+
+impl BeamRotor {
+    pub fn elements(&self) -> &[ShaftElement] {
+        &self.elements
+    }
+    pub fn disks(&self) -> &[Disk] {
+        &self.disks
+    }
+    pub fn supports(&self) -> &[Support] {
+        &self.supports
+    }
+    pub fn guyan(&self) -> Option<GuyanKeep> {
+        self.guyan
+    }
+    pub fn nodes(&self) -> usize {
+        self.elements.len() + 1
+    }
+
+    pub fn parse(b: &BeamInput, limits: &Limits) -> Result<Self, Invalid> {
+        let mut bad = Invalid::default();
+        let mut materials = std::collections::BTreeMap::new();
+        for (name, m) in &b.materials {
+            let at = format!("rotor.materials.{name}");
+            let e = bad.check(&format!("{at}.young_modulus"), positive(m.young_modulus));
+            let rho = bad.check(&format!("{at}.density"), positive(m.density));
+            let nu = bad.check(
+                &format!("{at}.poisson_ratio"),
+                finite(m.poisson_ratio).and_then(|v| {
+                    if v > -1.0 && v < 0.5 {
+                        Ok(v)
+                    } else {
+                        Err(format!("must be in (-1, 0.5) (got {v})"))
+                    }
+                }),
+            );
+            let eta = bad.check(&format!("{at}.loss_factor"), loss_factor(m.loss_factor));
+            if let (Some(e), Some(rho), Some(nu), Some(eta)) = (e, rho, nu, eta) {
+                materials.insert(name.clone(), (e, rho, nu, eta));
+            }
+        }
+        if b.shaft.is_empty() {
+            bad.push("rotor.shaft", "needs at least one segment");
+        }
+        let mut elements = vec![];
+        let mut element_count: u64 = 0;
+        for (i, seg) in b.shaft.iter().enumerate() {
+            let at = format!("rotor.shaft[{i}]");
+            let length = bad.check(&format!("{at}.length"), positive(seg.length));
+            let outer = bad.check(
+                &format!("{at}.outer_diameter"),
+                positive(seg.outer_diameter),
+            );
+            let inner = bad.check(
+                &format!("{at}.inner_diameter"),
+                non_negative(seg.inner_diameter),
+            );
+            if let (Some(o), Some(i_)) = (outer, inner)
+                && i_ >= o
+            {
+                bad.push(
+                    format!("{at}.inner_diameter"),
+                    format!("must be smaller than the outer diameter {o} (got {i_})"),
+                );
+            }
+            let shear = match seg.shear_factor {
+                None => Some(None),
+                Some(x) => bad
+                    .check(&format!("{at}.shear_factor"), positive(x))
+                    .map(Some),
+            };
+            let count = match seg.elements {
+                None => Some(1),
+                Some(n) if n >= 1 && (n as u64) <= limits.max_dofs as u64 => Some(n as usize),
+                Some(n) => {
+                    bad.push(
+                        format!("{at}.elements"),
+                        format!("must be between 1 and {} (got {n})", limits.max_dofs),
+                    );
+                    None
+                }
+            };
+            let material = materials.get(&seg.material).copied();
+            if material.is_none() && !b.materials.contains_key(&seg.material) {
+                let known: Vec<&str> = b.materials.keys().map(String::as_str).collect();
+                bad.push(
+                    format!("{at}.material"),
+                    format!(
+                        "unknown material `{}` (defined: {})",
+                        seg.material,
+                        if known.is_empty() {
+                            "none".into()
+                        } else {
+                            known.join(", ")
+                        }
+                    ),
+                );
+            }
+            if let (Some(l), Some(o), Some(i_), Some(sh), Some(n), Some((e, rho, nu, eta))) =
+                (length, outer, inner, shear, count, material)
+                && i_ < o
+            {
+                element_count += n as u64;
+                for _ in 0..n {
+                    elements.push(ShaftElement {
+                        length: l / n as f64,
+                        outer_diameter: o,
+                        inner_diameter: i_,
+                        young_modulus: e,
+                        density: rho,
+                        poisson_ratio: nu,
+                        loss_factor: eta,
+                        shear_factor: sh,
+                    });
+                }
+            }
+        }
+        let nodes = elements.len() + 1;
+        if 2 * (element_count + 1) > limits.max_dofs as u64 {
+            bad.push(
+                "rotor.shaft",
+                format!(
+                    "{} elements give {} degrees of freedom, more than the limit of {}                      (WHIRL_MAX_DOFS)",
+                    element_count,
+                    2 * (element_count + 1),
+                    limits.max_dofs
+                ),
+            );
+        }
+        let node_ok = |bad: &mut Invalid, at: String, node: i64| -> Option<usize> {
+            if node >= 0 && (node as u64) < nodes as u64 {
+                Some(node as usize)
+            } else {
+                bad.push(
+                    at,
+                    format!("node {node} is not on the shaft (nodes 0 to {})", nodes - 1),
+                );
+                None
+            }
+        };
+        let mut disks = vec![];
+        for (i, d) in b.disks.iter().enumerate() {
+            let at = format!("rotor.disks[{i}]");
+            let node = node_ok(&mut bad, format!("{at}.node"), d.node);
+            let mass = bad.check(&format!("{at}.mass"), non_negative(d.mass));
+            let jp = bad.check(
+                &format!("{at}.polar_inertia"),
+                non_negative(d.polar_inertia),
+            );
+            let jt = bad.check(
+                &format!("{at}.transverse_inertia"),
+                non_negative(d.transverse_inertia),
+            );
+            if let (Some(node), Some(mass), Some(jp), Some(jt)) = (node, mass, jp, jt) {
+                disks.push(Disk {
+                    node,
+                    mass,
+                    polar_inertia: jp,
+                    transverse_inertia: jt,
+                });
+            }
+        }
+        if b.supports.is_empty() {
+            bad.push(
+                "rotor.supports",
+                "a rotor needs at least one support (bearing) to hold it",
+            );
+        }
+        let mut supports = vec![];
+        for (i, s) in b.supports.iter().enumerate() {
+            let at = format!("rotor.supports[{i}]");
+            let node = node_ok(&mut bad, format!("{at}.node"), s.node);
+            let k = bad.check(&format!("{at}.stiffness"), non_negative(s.stiffness));
+            let c = bad.check(&format!("{at}.damping"), non_negative(s.damping));
+            let eta = bad.check(&format!("{at}.loss_factor"), loss_factor(s.loss_factor));
+            if let (Some(node), Some(k), Some(c), Some(eta)) = (node, k, c, eta) {
+                supports.push(Support {
+                    node,
+                    stiffness: k,
+                    damping: c,
+                    loss_factor: eta,
+                });
+            }
+        }
+        bad.into_result(|| BeamRotor {
+            elements,
+            disks,
+            supports,
+            guyan: b.reduction.as_ref().map(|r| r.guyan),
+        })
+    }
+}
+
+/// A rotor given as matrices: square, one size, symmetric, mass positive definite.
+#[derive(Debug, Clone)]
+pub struct MatrixRotor {
+    pub mass: RMat,
+    pub stiffness: RMat,
+    pub gyroscopic: RMat,
+    pub damping_rotating: RMat,
+    pub damping_nonrotating: RMat,
+    pub hysteretic_rotating: RMat,
+    pub hysteretic_nonrotating: RMat,
+}
+
+impl MatrixRotor {
+    pub fn parse(m: &MatricesInput, limits: &Limits) -> Result<Self, Invalid> {
+        let mut bad = Invalid::default();
+        let n = m.mass.len();
+        if n == 0 {
+            bad.push("rotor.mass", "must be a non-empty square matrix");
+            return Err(bad);
+        }
+        if n > limits.max_dofs {
+            bad.push(
+                "rotor.mass",
+                format!(
+                    "{n} degrees of freedom, more than the limit of {} (WHIRL_MAX_DOFS)",
+                    limits.max_dofs
+                ),
+            );
+            return Err(bad);
+        }
+        let mut matrix = |name: &str, rows: Option<&Vec<Vec<f64>>>| -> Option<RMat> {
+            let at = format!("rotor.{name}");
+            let Some(rows) = rows else {
+                return Some(RMat::zeros(n, n));
+            };
+            if rows.len() != n || rows.iter().any(|r| r.len() != n) {
+                bad.push(at, format!("must be {n} x {n} like `mass`"));
+                return None;
+            }
+            for (i, r) in rows.iter().enumerate() {
+                for (j, x) in r.iter().enumerate() {
+                    if !x.is_finite() {
+                        bad.push(format!("{at}[{i}][{j}]"), "must be a finite number");
+                        return None;
+                    }
+                }
+            }
+            let a = RMat::from_fn(n, n, |i, j| rows[i][j]);
+            let scale = rows.iter().flatten().fold(0.0f64, |s, x| s.max(x.abs()));
+            for i in 0..n {
+                for j in 0..i {
+                    if (a[(i, j)] - a[(j, i)]).abs() > 1e-9 * scale {
+                        bad.push(
+                            format!("{at}[{i}][{j}]"),
+                            format!(
+                                "must be symmetric: {} != {} at [{j}][{i}]",
+                                a[(i, j)],
+                                a[(j, i)]
+                            ),
+                        );
+                        return None;
+                    }
+                }
+            }
+            Some(a)
+        };
+        let mass = matrix("mass", Some(&m.mass));
+        let stiffness = matrix("stiffness", Some(&m.stiffness));
+        let gyroscopic = matrix("gyroscopic", m.gyroscopic.as_ref());
+        let c_r = matrix("damping_rotating", m.damping_rotating.as_ref());
+        let c_n = matrix("damping_nonrotating", m.damping_nonrotating.as_ref());
+        let h_r = matrix("hysteretic_rotating", m.hysteretic_rotating.as_ref());
+        let h_n = matrix("hysteretic_nonrotating", m.hysteretic_nonrotating.as_ref());
+        if let Some(mm) = &mass
+            && !linalg::is_positive_definite(mm)
+        {
+            bad.push("rotor.mass", "must be positive definite");
+        }
+        bad.into_result(|| MatrixRotor {
+            mass: mass.unwrap(),
+            stiffness: stiffness.unwrap(),
+            gyroscopic: gyroscopic.unwrap(),
+            damping_rotating: c_r.unwrap(),
+            damping_nonrotating: c_n.unwrap(),
+            hysteretic_rotating: h_r.unwrap(),
+            hysteretic_nonrotating: h_n.unwrap(),
+        })
     }
 }
 

@@ -15,6 +15,11 @@ pub struct Config {
     pub max_body_bytes: usize,
     /// `WHIRL_MAX_SPEEDS`: most spin speeds in one sweep (default 2000).
     pub max_speeds: usize,
+    /// `WHIRL_MAX_DOFS`: most complex degrees of freedom of an assembled rotor (default 1000).
+    pub max_dofs: usize,
+    /// `WHIRL_MAX_STATES`: largest first-order eigenproblem, internal coordinates included
+    /// (default 1500).
+    pub max_states: usize,
     /// `WHIRL_LOG_FORMAT`: `text` (default) or `json`.
     pub log_json: bool,
 }
@@ -28,12 +33,21 @@ impl Default for Config {
             queue: 64,
             max_body_bytes: 8 * 1024 * 1024,
             max_speeds: 2000,
+            max_dofs: 1000,
+            max_states: 1500,
             log_json: false,
         }
     }
 }
 
 impl Config {
+    /// The model-size limits validation enforces.
+    pub fn limits(&self) -> crate::model::rotor::Limits {
+        crate::model::rotor::Limits {
+            max_dofs: self.max_dofs,
+        }
+    }
+
     /// Reads the environment; a set but unparsable variable is an error, not a silent default.
     pub fn from_env() -> Result<Self, String> {
         Self::from_lookup(|k| std::env::var(k).ok())
@@ -72,6 +86,8 @@ impl Config {
             queue: num(&get, "WHIRL_QUEUE", d.queue, 0)?,
             max_body_bytes: num(&get, "WHIRL_MAX_BODY_BYTES", d.max_body_bytes, 1024)?,
             max_speeds: num(&get, "WHIRL_MAX_SPEEDS", d.max_speeds, 2)?,
+            max_dofs: num(&get, "WHIRL_MAX_DOFS", d.max_dofs, 1)?,
+            max_states: num(&get, "WHIRL_MAX_STATES", d.max_states, 2)?,
             log_json,
         })
     }

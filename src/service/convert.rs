@@ -2,9 +2,11 @@
 
 use crate::analysis::campbell::CampbellResult;
 use crate::analysis::modal::ModalResult;
-use crate::analysis::poles::{self, PoleSet};
+use crate::analysis::poles;
 use crate::analysis::stability::Threshold;
+use crate::linalg::c64;
 use crate::model::api;
+use crate::system::{Dof, DofKind};
 
 pub fn whirl(w: poles::Whirl) -> api::Whirl {
     match w {
@@ -21,17 +23,55 @@ pub fn pole(p: &poles::Pole) -> api::Pole {
         whirl: whirl(p.whirl),
         damping_ratio: p.damping_ratio(),
         log_decrement: p.log_decrement(),
+        shape: None,
     }
 }
 
-fn pole_list(set: &PoleSet) -> Vec<api::Pole> {
-    set.all().map(pole).collect()
+/// The translations of a mode shape, the largest scaled to 1 (real).
+fn translations(p: &poles::Pole, dofs: &[Dof]) -> Vec<api::NodeDisplacement> {
+    let t: Vec<(usize, c64)> = dofs
+        .iter()
+        .zip(&p.shape)
+        .filter(|(d, _)| d.kind == DofKind::Translation)
+        .map(|(d, x)| (d.node, *x))
+        .collect();
+    let big = t
+        .iter()
+        .map(|(_, x)| *x)
+        .max_by(|a, b| a.norm().total_cmp(&b.norm()))
+        .unwrap_or(c64::new(1.0, 0.0));
+    let scale = if big.norm() > 0.0 {
+        1.0 / big
+    } else {
+        c64::new(1.0, 0.0)
+    };
+    t.into_iter()
+        .map(|(node, x)| {
+            let v = x * scale;
+            api::NodeDisplacement {
+                node,
+                re: v.re,
+                im: v.im,
+            }
+        })
+        .collect()
 }
 
 pub fn modal(r: &ModalResult) -> api::ModalResponse {
+    let mut poles: Vec<api::Pole> = r
+        .poles
+        .rotor
+        .iter()
+        .map(|p| {
+            let mut out = pole(p);
+            out.shape = Some(translations(p, &r.dofs));
+            out
+        })
+        .collect();
+    poles.extend(r.poles.internal.iter().map(pole));
     api::ModalResponse {
         speed: r.poles.speed,
-        poles: pole_list(&r.poles),
+        poles,
         natural_frequencies: r.natural_frequencies.clone(),
         states: r.states,
         missing_poles: r.poles.missing(),

@@ -9,7 +9,8 @@ use super::convert;
 use super::error::ApiError;
 use super::json::ApiJson;
 use crate::analysis;
-use crate::damping::DampedModel;
+use crate::damping::{DampedModel, DampingError};
+use crate::fem::modal::ModalError;
 use crate::model::Invalid;
 use crate::model::api::{
     CampbellResponse, DampingInput, ModalRequest, ModalResponse, Problem, RotorInput,
@@ -71,11 +72,12 @@ pub async fn modal(
 ) -> Result<Json<ModalResponse>, ApiError> {
     let mut bad = Invalid::default();
     let speed = bad.check("speed", non_negative(req.speed));
-    let parsed = validate_model(&req.rotor, &req.damping, bad)?;
+    let parsed = validate_model(&st, &req.rotor, &req.damping, bad)?;
     let speed = speed.expect("validated");
+    let max_states = st.config.max_states;
     st.pool
         .run(move || {
-            let (system, model) = build(&parsed)?;
+            let (system, model) = build(&parsed, max_states)?;
             let r = analysis::modal::modal(&system, &model, speed)?;
             Ok(Json(convert::modal(&r)))
         })
@@ -100,9 +102,10 @@ pub async fn campbell(
     ApiJson(req): ApiJson<SweepRequest>,
 ) -> Result<Json<CampbellResponse>, ApiError> {
     let (parsed, grid) = validate_sweep(&st, &req)?;
+    let max_states = st.config.max_states;
     st.pool
         .run(move || {
-            let (_, model) = build(&parsed)?;
+            let (_, model) = build(&parsed, max_states)?;
             let r = analysis::campbell::campbell(&model, grid.as_slice())?;
             Ok(Json(convert::campbell(&r)))
         })
@@ -127,9 +130,10 @@ pub async fn stability(
     ApiJson(req): ApiJson<SweepRequest>,
 ) -> Result<Json<StabilityResponse>, ApiError> {
     let (parsed, grid) = validate_sweep(&st, &req)?;
+    let max_states = st.config.max_states;
     st.pool
         .run(move || {
-            let (_, model) = build(&parsed)?;
+            let (_, model) = build(&parsed, max_states)?;
             let t = analysis::stability::stability(&model, grid.as_slice())?;
             Ok(Json(convert::stability(
                 t.as_ref(),
@@ -152,11 +156,12 @@ pub struct Parsed {
 
 /// Validates rotor and damping together, adding to errors already found.
 fn validate_model(
+    st: &AppState,
     rotor: &RotorInput,
     damping: &DampingInput,
     mut bad: Invalid,
 ) -> Result<Parsed, ApiError> {
-    let rotor = match Rotor::parse(rotor) {
+    let rotor = match Rotor::parse(rotor, &st.config.limits()) {
         Ok(r) => Some(r),
         Err(e) => {
             bad.extend(e);
@@ -190,14 +195,33 @@ fn validate_sweep(st: &AppState, req: &SweepRequest) -> Result<(Parsed, SpeedGri
             None
         }
     };
-    let parsed = validate_model(&req.rotor, &req.damping, bad)?;
+    let parsed = validate_model(st, &req.rotor, &req.damping, bad)?;
     Ok((parsed, grid.expect("validated")))
 }
 
-/// Assembles the rotor and builds its damping model (on the worker pool: may solve eigenproblems).
-fn build(p: &Parsed) -> Result<(RotorSystem, DampedModel), ApiError> {
-    let system = RotorSystem::assemble(&p.rotor);
-    let model =
-        DampedModel::build(&system, &p.damping).map_err(|e| ApiError::Unsolvable(e.to_string()))?;
+/// Assembles the rotor and builds its damping model (on the worker pool: solves eigenproblems).
+fn build(p: &Parsed, max_states: usize) -> Result<(RotorSystem, DampedModel), ApiError> {
+    let system = RotorSystem::assemble(&p.rotor)
+        .map_err(|e| ApiError::Unsolvable(format!("the rotor cannot be assembled: {e}")))?;
+    let model = DampedModel::build(&system, &p.damping).map_err(|e| match e {
+        DampingError::Modal(ModalError::RigidBody { .. }) => {
+            let path = match p.rotor {
+                Rotor::Beam(_) => "rotor.supports",
+                _ => "rotor.stiffness",
+            };
+            ApiError::Invalid(Invalid::one(path, e.to_string()))
+        }
+        other => ApiError::Unsolvable(other.to_string()),
+    })?;
+    if model.states() > max_states {
+        return Err(ApiError::Invalid(Invalid::one(
+            "damping",
+            format!(
+                "the model has {} states, more than the limit of {max_states} \
+                 (WHIRL_MAX_STATES): use Guyan reduction, `modes`, or fewer branches",
+                model.states()
+            ),
+        )));
+    }
     Ok((system, model))
 }

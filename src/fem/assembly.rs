@@ -1,0 +1,120 @@
+//! Assembly of a finite-element rotor into a [`RotorSystem`].
+//!
+//! Two complex degrees of freedom per node, `(r, phi)` at `2 node` and `2 node + 1`.
+//! The shaft's stiffness and its material loss (`K''_r = eta K_e` per element) are rotating;
+//! supports act on translations and are nonrotating (stiffness, viscous damping,
+//! `K''_n = eta k`). Disks add mass on `r`, transverse inertia on `phi` and polar inertia to
+//! the gyroscopic matrix.
+
+use super::element::{self, Mat4, Section};
+use super::guyan;
+use crate::linalg::{LinalgError, RMat};
+use crate::model::api::GuyanKeep;
+use crate::model::rotor::{BeamRotor, MatrixRotor, ShaftElement};
+use crate::system::{Dof, DofKind, RotorSystem};
+
+/// The section of an element, with Cowper's shear factor where none was given.
+pub fn section(e: &ShaftElement) -> Section {
+    Section {
+        length: e.length,
+        outer_diameter: e.outer_diameter,
+        inner_diameter: e.inner_diameter,
+        young_modulus: e.young_modulus,
+        density: e.density,
+        poisson_ratio: e.poisson_ratio,
+        shear_factor: e.shear_factor.unwrap_or_else(|| {
+            element::cowper_shear_factor(e.outer_diameter, e.inner_diameter, e.poisson_ratio)
+        }),
+    }
+}
+
+/// Assembles (and reduces, if asked) a beam rotor.
+pub fn beam(rotor: &BeamRotor) -> Result<RotorSystem, LinalgError> {
+    let nodes = rotor.nodes();
+    let n = 2 * nodes;
+    let z = || RMat::zeros(n, n);
+    let mut s = RotorSystem {
+        mass: z(),
+        gyroscopic: z(),
+        stiffness_rotating: z(),
+        stiffness_nonrotating: z(),
+        damping_rotating: z(),
+        damping_nonrotating: z(),
+        hysteretic_rotating: z(),
+        hysteretic_nonrotating: z(),
+        dofs: (0..n)
+            .map(|i| Dof {
+                node: i / 2,
+                kind: if i % 2 == 0 {
+                    DofKind::Translation
+                } else {
+                    DofKind::Rotation
+                },
+            })
+            .collect(),
+    };
+    for (e, el) in rotor.elements().iter().enumerate() {
+        let sec = section(el);
+        let k = element::stiffness(&sec);
+        add(&mut s.stiffness_rotating, 2 * e, &k, 1.0);
+        add(&mut s.hysteretic_rotating, 2 * e, &k, el.loss_factor);
+        add(&mut s.mass, 2 * e, &element::mass(&sec), 1.0);
+        add(&mut s.gyroscopic, 2 * e, &element::gyroscopic(&sec), 1.0);
+    }
+    for d in rotor.disks() {
+        let (r, phi) = (2 * d.node, 2 * d.node + 1);
+        s.mass[(r, r)] += d.mass;
+        s.mass[(phi, phi)] += d.transverse_inertia;
+        s.gyroscopic[(phi, phi)] += d.polar_inertia;
+    }
+    for sup in rotor.supports() {
+        let r = 2 * sup.node;
+        s.stiffness_nonrotating[(r, r)] += sup.stiffness;
+        s.damping_nonrotating[(r, r)] += sup.damping;
+        s.hysteretic_nonrotating[(r, r)] += sup.loss_factor * sup.stiffness;
+    }
+    match rotor.guyan() {
+        None => Ok(s),
+        Some(GuyanKeep::Translations) => {
+            let keep: Vec<bool> = s
+                .dofs
+                .iter()
+                .map(|d| d.kind == DofKind::Translation)
+                .collect();
+            guyan::reduce(&s, &keep)
+        }
+    }
+}
+
+/// A rotor given as matrices: the stiffness counts as nonrotating (only damping and loss
+/// distinguish rotating parts); degree of freedom `i` is reported as node `i`.
+pub fn matrices(m: &MatrixRotor) -> RotorSystem {
+    let n = m.mass.nrows();
+    RotorSystem {
+        mass: m.mass.clone(),
+        gyroscopic: m.gyroscopic.clone(),
+        stiffness_rotating: RMat::zeros(n, n),
+        stiffness_nonrotating: m.stiffness.clone(),
+        damping_rotating: m.damping_rotating.clone(),
+        damping_nonrotating: m.damping_nonrotating.clone(),
+        hysteretic_rotating: m.hysteretic_rotating.clone(),
+        hysteretic_nonrotating: m.hysteretic_nonrotating.clone(),
+        dofs: (0..n)
+            .map(|i| Dof {
+                node: i,
+                kind: DofKind::Translation,
+            })
+            .collect(),
+    }
+}
+
+fn add(target: &mut RMat, at: usize, e: &Mat4, factor: f64) {
+    if factor == 0.0 {
+        return;
+    }
+    for i in 0..4 {
+        for j in 0..4 {
+            target[(at + i, at + j)] += factor * e[i][j];
+        }
+    }
+}
