@@ -95,26 +95,36 @@ mod tests {
 
     #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
     async fn a_full_queue_refuses_at_once() {
-        let pool = Arc::new(WorkerPool::new(1, 1));
-        let (tx, rx) = std::sync::mpsc::channel::<()>();
-        let p = pool.clone();
-        let running = tokio::spawn(async move {
-            p.run(move || {
-                rx.recv().ok();
-                Ok(())
-            })
+        let test = async {
+            let pool = Arc::new(WorkerPool::new(1, 1));
+            let (tx, rx) = std::sync::mpsc::channel::<()>();
+            let p = pool.clone();
+            let running = tokio::spawn(async move {
+                p.run(move || {
+                    rx.recv().ok();
+                    Ok(())
+                })
+                .await
+            });
+            // The first analysis holds the only worker before the second one queues.
+            while pool.permits.available_permits() > 0 {
+                tokio::time::sleep(std::time::Duration::from_millis(1)).await;
+            }
+            let p = pool.clone();
+            let waiting = tokio::spawn(async move { p.run(|| Ok(())).await });
+            while pool.in_flight() < 2 {
+                tokio::time::sleep(std::time::Duration::from_millis(1)).await;
+            }
+            assert!(!pool.ready());
+            assert!(matches!(pool.run(|| Ok(())).await, Err(ApiError::Busy)));
+            tx.send(()).unwrap();
+            running.await.unwrap().unwrap();
+            waiting.await.unwrap().unwrap();
+            assert!(pool.ready());
+            assert_eq!(pool.in_flight(), 0);
+        };
+        tokio::time::timeout(std::time::Duration::from_secs(20), test)
             .await
-        });
-        let p = pool.clone();
-        let waiting = tokio::spawn(async move { p.run(|| Ok(())).await });
-        while pool.in_flight() < 2 {
-            tokio::time::sleep(std::time::Duration::from_millis(1)).await;
-        }
-        assert!(!pool.ready());
-        assert!(matches!(pool.run(|| Ok(())).await, Err(ApiError::Busy)));
-        tx.send(()).unwrap();
-        running.await.unwrap().unwrap();
-        waiting.await.unwrap().unwrap();
-        assert!(pool.ready());
+            .expect("the pool test must not hang");
     }
 }
