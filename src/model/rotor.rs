@@ -22,7 +22,7 @@ impl Default for Limits {
 pub enum Rotor {
     Jeffcott(Jeffcott),
     Beam(BeamRotor),
-    Matrices(MatrixRotor),
+    Matrices(Box<MatrixRotor>),
 }
 
 impl Rotor {
@@ -31,7 +31,9 @@ impl Rotor {
         match input {
             RotorInput::Jeffcott(j) => Jeffcott::parse(j, "rotor").map(Rotor::Jeffcott),
             RotorInput::Beam(b) => BeamRotor::parse(b, limits).map(Rotor::Beam),
-            RotorInput::Matrices(m) => MatrixRotor::parse(m, limits).map(Rotor::Matrices),
+            RotorInput::Matrices(m) => {
+                MatrixRotor::parse(m, limits).map(|m| Rotor::Matrices(Box::new(m)))
+            }
         }
     }
 
