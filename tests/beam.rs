@@ -350,3 +350,56 @@ async fn matrices_validation_names_each_bad_field() {
         );
     }
 }
+
+fn compressor() -> RotorSystem {
+    let path = format!(
+        "{}/examples/compressor-nvd.campbell.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let v: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    system(v["rotor"].clone())
+}
+
+#[test]
+fn a_nonrotating_rotor_is_never_unstable_under_any_model() {
+    // M > 0, C >= 0, K symmetric: every decay rate is <= 0 at rest. On the 100-element
+    // compressor (101 dof after Guyan, frequencies to 1e6 rad/s) an unbalanced eigensolver
+    // leaves round-off of eps w_max^2 ~ 1e-4 in the decay rates, and reported a threshold at
+    // 0 rad/s; balancing brings it to eps w_max.
+    let s = compressor();
+    assert_eq!(s.n(), 101);
+    for model in [
+        DampingModel::Viscous,
+        DampingModel::Hysteretic,
+        DampingModel::Equivalent { modes: Some(8) },
+        DampingModel::Equivalent { modes: None },
+    ] {
+        let set = poles_at(&DampedModel::build(&s, &model).unwrap(), 0.0).unwrap();
+        assert!(set.growth() <= 0.0, "{model:?}: growth {}", set.growth());
+        let worst = set
+            .all()
+            .map(|p| p.s.re / p.s.norm())
+            .fold(f64::NEG_INFINITY, f64::max);
+        assert!(worst < 1e-12, "{model:?}: sigma/|s| = {worst}");
+    }
+}
+
+#[test]
+fn the_compressor_threshold_with_equivalent_damping_is_supercritical_in_mode_1() {
+    let model =
+        DampedModel::build(&compressor(), &DampingModel::Equivalent { modes: Some(8) }).unwrap();
+    let speeds: Vec<f64> = (0..=30).map(|i| i as f64 * 100.0).collect();
+    let t = whirl::analysis::stability::stability(&model, &speeds)
+        .unwrap()
+        .unwrap();
+    assert_eq!((t.mode, t.pole.whirl), (1, Whirl::Forward));
+    assert!(t.speed > 2000.0 && t.speed < 3000.0, "{}", t.speed);
+    // The hysteretic model is stable over the same range.
+    let h = DampedModel::build(&compressor(), &DampingModel::Hysteretic).unwrap();
+    let coarse: Vec<f64> = (0..=10).map(|i| i as f64 * 300.0).collect();
+    assert!(
+        whirl::analysis::stability::stability(&h, &coarse)
+            .unwrap()
+            .is_none()
+    );
+}

@@ -359,3 +359,29 @@ fn gyroscopic_effect_stiffens_forward_and_softens_backward_whirl() {
         "backward softens"
     );
 }
+
+#[test]
+fn equivalent_damping_on_a_reduced_mode_set_damps_only_those_modes() {
+    let full = poles(&DampingModel::Equivalent { modes: None }, 0.0);
+    let two = poles(&DampingModel::Equivalent { modes: Some(2) }, 0.0);
+    let (f, t) = (upper(&full), upper(&two));
+    // The retained modes keep their damping (the truncation only drops small off-diagonal
+    // couplings to the others); the dropped ones have none: no viscous damping in Example 1.
+    for m in 0..2 {
+        assert!(
+            (f[m] - t[m]).norm() < 1e-3 * f[m].norm(),
+            "mode {}: {} vs {}",
+            m + 1,
+            f[m],
+            t[m]
+        );
+    }
+    for m in 2..4 {
+        assert!(
+            t[m].re.abs() < 1e-9 * t[m].norm(),
+            "mode {} should be undamped: {}",
+            m + 1,
+            t[m]
+        );
+    }
+}

@@ -418,3 +418,157 @@ async fn every_bundled_example_runs() {
     }
     assert!(count >= 5);
 }
+
+fn matrix(v: &Value) -> Vec<Vec<f64>> {
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r.as_array().unwrap().iter().map(num).collect())
+        .collect()
+}
+
+#[tokio::test]
+async fn damping_matrices_of_the_nvd_jeffcott_are_eqs_20_to_22() {
+    let (status, v) = post(
+        "/v1/damping",
+        json!({"rotor": nondimensional(0.01, 0.0),
+               "damping": {"model": "nonviscous", "rotating": {"branches": 4}}}),
+    )
+    .await;
+    assert_eq!(status, StatusCode::OK, "{v}");
+    let gamma = [1.700088, 1.360036, 1.360036, 1.700088];
+    let d: Vec<f64> = (1..=4)
+        .map(|j| 10f64.powf((2.0 * j as f64 - 5.0) / 2.0))
+        .collect();
+    let so = &v["second_order"];
+    let k = matrix(&so["stiffness"]);
+    let c_r = matrix(&so["damping_rotating"]);
+    let m = matrix(&so["mass"]);
+    assert_eq!(k.len(), 5);
+    // K* = [[1 + eta sum gamma, -eta gamma_j], [-eta gamma_j, diag(eta gamma_j)]].
+    assert!((k[0][0] - (1.0 + 0.01 * gamma.iter().sum::<f64>())).abs() < 1e-8);
+    for j in 0..4 {
+        assert!((k[0][j + 1] + 0.01 * gamma[j]).abs() < 1e-8);
+        assert!((k[j + 1][j + 1] - 0.01 * gamma[j]).abs() < 1e-8);
+        // C_r* = eta diag(0, gamma_j / d_j); no mass on the internal coordinates.
+        // (relative 1e-6: the printed gammas carry 7 digits)
+        let c = 0.01 * gamma[j] / d[j];
+        assert!((c_r[j + 1][j + 1] - c).abs() < 1e-6 * c);
+        assert_eq!(m[j + 1][j + 1], 0.0);
+    }
+    assert_eq!(c_r[0][0], 0.0);
+    assert_eq!(v["added_states"], 4);
+    let coords = v["coordinates"].as_array().unwrap();
+    assert_eq!(coords[0]["kind"], "translation");
+    assert_eq!(coords[1]["kind"], "internal");
+    assert_eq!(coords[1]["rotating"], true);
+    assert_eq!(coords[4]["branch"], 4);
+    assert!((num(&coords[4]["relaxation_rate"]) - d[3]).abs() < 1e-12);
+    // The fit report: the branches restore eta at the relaxation rates, not in between.
+    let dampers = v["dampers"].as_array().unwrap();
+    assert_eq!(dampers.len(), 1);
+    let r = &dampers[0];
+    assert_eq!(r["rotating"], true);
+    assert!((num(&r["loss_factor"]) - 0.01).abs() < 1e-12);
+    assert!(num(&r["max_deviation"]) > 0.0 && num(&r["rms_deviation"]) <= num(&r["max_deviation"]));
+    assert_eq!(r["added_states"], 4);
+}
+
+#[tokio::test]
+async fn state_form_of_the_one_branch_jeffcott_is_the_matrix_under_eq_26() {
+    // With the sign MODEL.md section 7 corrects: +2 eta_r in the first row.
+    let (en, er) = (0.02, 0.01);
+    let (status, v) = post(
+        "/v1/damping",
+        json!({"rotor": nondimensional(er, en), "form": "state",
+               "damping": {"model": "nonviscous", "rotating": {"branches": 1}, "nonrotating": {"branches": 1}}}),
+    )
+    .await;
+    assert_eq!(status, StatusCode::OK, "{v}");
+    let a0 = matrix(&v["state"]["constant"]["re"]);
+    let a0_im = matrix(&v["state"]["constant"]["im"]);
+    let a1_im = matrix(&v["state"]["per_speed"]["im"]);
+    let expected = [
+        [0.0, -1.0 - 2.0 * en - 2.0 * er, 2.0 * en, 2.0 * er],
+        [1.0, 0.0, 0.0, 0.0],
+        [0.0, 1.0, -1.0, 0.0],
+        [0.0, 1.0, 0.0, -1.0],
+    ];
+    for i in 0..4 {
+        for j in 0..4 {
+            assert!(
+                (a0[i][j] - expected[i][j]).abs() < 1e-12,
+                "A0[{i}][{j}] = {}",
+                a0[i][j]
+            );
+            assert_eq!(a0_im[i][j], 0.0);
+            // i Omega on the rotating branch's internal coordinate only.
+            let e = if i == 3 && j == 3 { 1.0 } else { 0.0 };
+            assert_eq!(a1_im[i][j], e);
+        }
+    }
+}
+
+#[tokio::test]
+async fn equivalent_damping_matrix_of_the_jeffcott_is_k_loss_over_omega_n() {
+    let (status, v) = post(
+        "/v1/damping",
+        json!({"rotor": {"type": "jeffcott", "mass": 4.0, "stiffness": 100.0,
+                         "loss_factor_rotating": 0.02, "loss_factor_nonrotating": 0.05},
+               "damping": {"model": "equivalent"}}),
+    )
+    .await;
+    assert_eq!(status, StatusCode::OK, "{v}");
+    // c_eq = k'' / w_n = eta k / 5.
+    assert!((num(&v["equivalent_rotating"][0][0]) - 0.02 * 100.0 / 5.0).abs() < 1e-12);
+    assert!((num(&v["equivalent_nonrotating"][0][0]) - 0.05 * 100.0 / 5.0).abs() < 1e-12);
+    assert_eq!(v["added_states"], 0);
+    let (status, v) = post(
+        "/v1/damping",
+        json!({"rotor": nondimensional(0.01, 0.0), "damping": {"model": "hysteretic"}}),
+    )
+    .await;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert_eq!(paths(&v), vec!["damping.model"]);
+}
+
+#[tokio::test]
+async fn the_fit_chooses_the_fewest_branches_that_meet_the_bound() {
+    let body = |dev: f64| {
+        json!({"rotor": nondimensional(0.01, 0.03),
+               "damping": {"model": "nonviscous"},
+               "fit": {"band": [0.01, 100.0], "max_deviation": dev}})
+    };
+    // Spacing 10 ripples by about 10.4% between relaxation rates whatever the count: 0.15
+    // is reachable over four decades, 0.1 is not.
+    let (status, v) = post("/v1/damping", body(0.15)).await;
+    assert_eq!(status, StatusCode::OK, "{v}");
+    let m = v["branches_rotating"].as_u64().unwrap();
+    assert_eq!(v["branches_nonrotating"].as_u64().unwrap(), m);
+    for d in v["dampers"].as_array().unwrap() {
+        assert!(num(&d["max_deviation"]) <= 0.15);
+        assert_eq!(d["band"], json!([0.01, 100.0]));
+    }
+    // One branch fewer would not do: ask for the bound that count achieves, minus a bit.
+    let (_, fewer) = post(
+        "/v1/damping",
+        json!({"rotor": nondimensional(0.01, 0.03),
+               "damping": {"model": "nonviscous", "rotating": {"branches": m - 1}, "nonrotating": {"branches": m - 1}},
+               "fit": {"band": [0.01, 100.0]}}),
+    )
+    .await;
+    assert!(num(&fewer["dampers"][0]["max_deviation"]) > 0.15);
+    // Unreachable targets and contradictory requests are 422 with the field.
+    let (status, v) = post("/v1/damping", body(0.1)).await;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert_eq!(paths(&v), vec!["fit.max_deviation"]);
+    let (status, v) = post(
+        "/v1/damping",
+        json!({"rotor": nondimensional(0.01, 0.0),
+               "damping": {"model": "nonviscous", "rotating": {"branches": 3}},
+               "fit": {"band": [0.1, 10.0], "max_deviation": 0.1}}),
+    )
+    .await;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert_eq!(paths(&v), vec!["damping.rotating"]);
+}

@@ -59,6 +59,24 @@ pub fn campbell(model: &DampedModel, speeds: &[f64]) -> Result<CampbellResult, A
     })
 }
 
+impl CampbellResult {
+    /// Keeps the branches whose |frequency| at their first defined speed is at most `bound`
+    /// (mode numbers unchanged), and the critical speeds of those.
+    pub fn keep_below(&mut self, bound: f64) {
+        if bound.is_infinite() {
+            return;
+        }
+        self.branches.retain(|b| {
+            b.poles
+                .iter()
+                .flatten()
+                .next()
+                .is_some_and(|s| s.im.abs() <= bound)
+        });
+        self.critical_speeds = critical_speeds(&self.speeds, &self.branches);
+    }
+}
+
 /// Modes numbered per whirl by |frequency| at the branch's first defined speed; branches
 /// ordered by mode, forward before backward.
 fn number_modes(branches: &mut [Branch]) {

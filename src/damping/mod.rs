@@ -14,6 +14,7 @@
 pub mod equivalent;
 pub mod hysteretic;
 pub mod nonviscous;
+pub mod report;
 pub mod state;
 
 use crate::fem::modal::{ModalBasis, ModalError};

@@ -180,6 +180,8 @@ fn branches_on(
                 out.main_stiffness.push(set.nu[j] * k);
                 out.rate.push(d);
                 out.rotating.push(rotating);
+                out.mode.push(i);
+                out.index.push(j);
                 columns.push(i);
             }
         }

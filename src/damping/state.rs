@@ -83,6 +83,10 @@ pub struct Branches {
     pub rate: Vec<f64>,
     /// Whether the branch's damper is in the rotor (circulatory term on `y_j`).
     pub rotating: Vec<bool>,
+    /// Mode (0-based) whose damper the branch belongs to.
+    pub mode: Vec<usize>,
+    /// Index j (0-based) of the branch within its damper.
+    pub index: Vec<usize>,
 }
 
 impl Branches {
@@ -94,6 +98,8 @@ impl Branches {
             main_stiffness: vec![],
             rate: vec![],
             rotating: vec![],
+            mode: vec![],
+            index: vec![],
         }
     }
 
@@ -171,6 +177,20 @@ impl StateModel {
             branches: br.clone(),
             stiffness: so.stiffness.clone(),
         })
+    }
+
+    /// `A0`: the state matrix at rest.
+    pub fn a0(&self) -> &CMat {
+        &self.a0
+    }
+
+    /// `A1 = dA/dOmega`.
+    pub fn a1(&self) -> &CMat {
+        &self.a1
+    }
+
+    pub fn branches(&self) -> &Branches {
+        &self.branches
     }
 
     /// The state matrix at spin speed `speed`.

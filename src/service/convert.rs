@@ -4,7 +4,9 @@ use crate::analysis::campbell::CampbellResult;
 use crate::analysis::modal::ModalResult;
 use crate::analysis::poles;
 use crate::analysis::stability::Threshold;
-use crate::linalg::c64;
+use crate::damping::StateModel;
+use crate::damping::report::{Augmented, Coordinate, DamperFit, ModelMatrices};
+use crate::linalg::{CMat, RMat, c64};
 use crate::model::api;
 use crate::system::{Dof, DofKind};
 
@@ -103,5 +105,140 @@ pub fn stability(t: Option<&Threshold>, range: [f64; 2]) -> api::StabilityRespon
         whirl: t.map(|t| whirl(t.pole.whirl)),
         frequency: t.map(|t| t.pole.frequency()),
         range,
+    }
+}
+
+/// Rows of a real matrix.
+pub fn rows(a: &RMat) -> Vec<Vec<f64>> {
+    (0..a.nrows())
+        .map(|i| (0..a.ncols()).map(|j| a[(i, j)]).collect())
+        .collect()
+}
+
+fn complex(a: &CMat) -> api::ComplexMatrix {
+    let part = |f: fn(c64) -> f64| -> Vec<Vec<f64>> {
+        (0..a.nrows())
+            .map(|i| (0..a.ncols()).map(|j| f(a[(i, j)])).collect())
+            .collect()
+    };
+    api::ComplexMatrix {
+        re: part(|z| z.re),
+        im: part(|z| z.im),
+    }
+}
+
+pub fn second_order(a: &Augmented) -> api::SecondOrderMatrices {
+    api::SecondOrderMatrices {
+        mass: rows(&a.mass),
+        gyroscopic: rows(&a.gyroscopic),
+        stiffness: rows(&a.stiffness),
+        damping_rotating: rows(&a.damping_rotating),
+        damping_nonrotating: rows(&a.damping_nonrotating),
+    }
+}
+
+/// State form; `m_inv` is `M^-1` (complex), placed on the velocity rows of `B`.
+pub fn state(sm: &StateModel, m_inv: &CMat) -> api::StateMatrices {
+    let (size, n) = (sm.size(), sm.n());
+    api::StateMatrices {
+        constant: complex(sm.a0()),
+        per_speed: complex(sm.a1()),
+        input: (0..size)
+            .map(|i| {
+                (0..n)
+                    .map(|j| if i < n { m_inv[(i, j)].re } else { 0.0 })
+                    .collect()
+            })
+            .collect(),
+    }
+}
+
+pub fn coordinates(c: &[Coordinate]) -> Vec<api::CoordinateOut> {
+    c.iter()
+        .enumerate()
+        .map(|(index, c)| match c {
+            Coordinate::Physical(d) => api::CoordinateOut {
+                index,
+                kind: match d.kind {
+                    DofKind::Translation => "translation",
+                    DofKind::Rotation => "rotation",
+                }
+                .into(),
+                node: Some(d.node),
+                mode: None,
+                branch: None,
+                rotating: None,
+                relaxation_rate: None,
+            },
+            Coordinate::Internal {
+                mode,
+                branch,
+                rotating,
+                rate,
+            } => api::CoordinateOut {
+                index,
+                kind: "internal".into(),
+                node: None,
+                mode: Some(mode + 1),
+                branch: Some(branch + 1),
+                rotating: Some(*rotating),
+                relaxation_rate: Some(*rate),
+            },
+        })
+        .collect()
+}
+
+pub fn damper(f: &DamperFit) -> api::DamperReport {
+    api::DamperReport {
+        mode: f.mode + 1,
+        rotating: f.rotating,
+        tuning_frequency: f.tuning_frequency,
+        loss_factor: f.loss_factor,
+        branches: f.branches,
+        spacing: f.spacing,
+        relaxation_rates: f.relaxation_rates.clone(),
+        springs: f.spring.clone(),
+        dampers: f.damper.clone(),
+        band: f.band,
+        max_deviation: f.max_deviation,
+        rms_deviation: f.rms_deviation,
+        storage_change_at_tuning: f.storage_change_at_tuning,
+        max_storage_change: f.max_storage_change,
+        added_states: f.added_states,
+        curve: f
+            .samples
+            .iter()
+            .map(|s| api::FitPoint {
+                frequency: s.frequency,
+                loss_factor: s.loss_factor,
+                storage_change: s.storage_change,
+            })
+            .collect(),
+    }
+}
+
+pub fn damping_matrices(r: &ModelMatrices, model: &str) -> api::DampingMatricesResponse {
+    api::DampingMatricesResponse {
+        model: model.into(),
+        coordinates: coordinates(&r.augmented.coordinates),
+        second_order: r.state.is_none().then(|| second_order(&r.augmented)),
+        state: r.state.as_ref().map(|(sm, m_inv)| state(sm, m_inv)),
+        equivalent_rotating: r.equivalent.as_ref().map(|(c_r, _)| rows(c_r)),
+        equivalent_nonrotating: r.equivalent.as_ref().map(|(_, c_n)| rows(c_n)),
+        modes: r
+            .modes
+            .iter()
+            .enumerate()
+            .map(|(i, &(w, eta_r, eta_n))| api::ModeLoss {
+                mode: i + 1,
+                natural_frequency: w,
+                loss_factor_rotating: eta_r,
+                loss_factor_nonrotating: eta_n,
+            })
+            .collect(),
+        dampers: r.dampers.iter().map(damper).collect(),
+        added_states: r.added_states,
+        branches_rotating: r.branches.map(|b| b.0),
+        branches_nonrotating: r.branches.map(|b| b.1),
     }
 }

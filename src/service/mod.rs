@@ -50,6 +50,7 @@ pub fn router(state: AppState) -> (Router, utoipa::openapi::OpenApi) {
         .routes(utoipa_axum::routes!(routes::modal))
         .routes(utoipa_axum::routes!(routes::campbell))
         .routes(utoipa_axum::routes!(routes::stability))
+        .routes(utoipa_axum::routes!(routes::damping_matrices))
         .with_state(state)
         .split_for_parts();
     let router = router

@@ -9,12 +9,13 @@ use super::convert;
 use super::error::ApiError;
 use super::json::ApiJson;
 use crate::analysis;
+use crate::damping::report;
 use crate::damping::{DampedModel, DampingError};
 use crate::fem::modal::ModalError;
 use crate::model::Invalid;
 use crate::model::api::{
-    CampbellResponse, DampingInput, ModalRequest, ModalResponse, Problem, RotorInput,
-    StabilityResponse, Status, SweepRequest,
+    CampbellResponse, DampingInput, DampingMatricesRequest, DampingMatricesResponse, MatrixForm,
+    ModalRequest, ModalResponse, Problem, RotorInput, StabilityResponse, Status, SweepRequest,
 };
 use crate::model::damping::DampingModel;
 use crate::model::error::non_negative;
@@ -103,10 +104,12 @@ pub async fn campbell(
 ) -> Result<Json<CampbellResponse>, ApiError> {
     let (parsed, grid) = validate_sweep(&st, &req)?;
     let max_states = st.config.max_states;
+    let max_frequency = req.max_frequency.unwrap_or(f64::INFINITY);
     st.pool
         .run(move || {
             let (_, model) = build(&parsed, max_states)?;
-            let r = analysis::campbell::campbell(&model, grid.as_slice())?;
+            let mut r = analysis::campbell::campbell(&model, grid.as_slice())?;
+            r.keep_below(max_frequency);
             Ok(Json(convert::campbell(&r)))
         })
         .await
@@ -141,6 +144,119 @@ pub async fn stability(
             )))
         })
         .await
+}
+
+/// Equivalent or nonviscous damping as matrices, for integration elsewhere.
+///
+/// The equivalent model's `C_eq` (rotating and nonrotating apart), or the nonviscous model's
+/// augmented matrices with the internal coordinates labelled (mode, branch, rotating,
+/// relaxation rate), in second-order or state form. For every nonviscous damper, the quality
+/// of its fit: the loss factor of the branches against frequency over a band, its largest and
+/// RMS deviation from the target, the change of storage stiffness, and the added states. With
+/// `fit.max_deviation`, the number of branches is chosen to meet it.
+#[utoipa::path(post, path = "/v1/damping", tag = "analyses", request_body = DampingMatricesRequest,
+    responses(
+        (status = 200, description = "Matrices and fit report", body = DampingMatricesResponse),
+        (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
+        (status = 413, description = "Body too large", body = Problem, content_type = "application/problem+json"),
+        (status = 422, description = "Invalid model", body = Problem, content_type = "application/problem+json"),
+        (status = 503, description = "Queue full; see Retry-After", body = Problem, content_type = "application/problem+json")))]
+pub async fn damping_matrices(
+    State(st): State<AppState>,
+    ApiJson(req): ApiJson<DampingMatricesRequest>,
+) -> Result<Json<DampingMatricesResponse>, ApiError> {
+    let mut bad = Invalid::default();
+    let fit = req.fit.clone().unwrap_or_default();
+    let band = match fit.band {
+        Some([lo, hi]) if lo.is_finite() && hi.is_finite() && lo > 0.0 && hi > lo => Some([lo, hi]),
+        Some(b) => {
+            bad.push(
+                "fit.band",
+                format!("must be [low, high] with 0 < low < high (got {b:?})"),
+            );
+            None
+        }
+        None => None,
+    };
+    let auto = match fit.max_deviation {
+        None => None,
+        Some(d) if d.is_finite() && d > 0.0 => Some(d),
+        Some(d) => {
+            bad.push(
+                "fit.max_deviation",
+                format!("must be a number > 0 (got {d})"),
+            );
+            None
+        }
+    };
+    if auto.is_some() {
+        match &req.damping {
+            DampingInput::Nonviscous(nv) => {
+                for (side, b) in [("rotating", &nv.rotating), ("nonrotating", &nv.nonrotating)] {
+                    if let Some(b) = b
+                        && (b.branches.is_some() || b.nu.is_some())
+                    {
+                        bad.push(
+                            format!("damping.{side}"),
+                            "fit.max_deviation chooses the number of branches: omit `branches` \
+                             and `nu`",
+                        );
+                    }
+                }
+                if band.is_none() && fit.band.is_none() {
+                    bad.push("fit.band", "needed with fit.max_deviation");
+                }
+            }
+            _ => bad.push("fit.max_deviation", "applies to the nonviscous model only"),
+        }
+    }
+    let parsed = validate_model(&st, &req.rotor, &req.damping, bad)?;
+    if matches!(
+        parsed.damping,
+        DampingModel::Viscous | DampingModel::Hysteretic
+    ) {
+        return Err(ApiError::Invalid(Invalid::one(
+            "damping.model",
+            format!(
+                "`{}` adds no matrices: this endpoint returns the `equivalent` or `nonviscous` \
+                 model (hysteretic damping has no time-domain form; nonviscous is its \
+                 time-domain model)",
+                parsed.damping.name()
+            ),
+        )));
+    }
+    let form = req.form.unwrap_or(MatrixForm::SecondOrder);
+    let max_states = st.config.max_states;
+    st.pool
+        .run(move || damping_report(&parsed, form, band, auto, max_states).map(Json))
+        .await
+}
+
+fn damping_report(
+    p: &Parsed,
+    form: MatrixForm,
+    band: Option<[f64; 2]>,
+    auto: Option<f64>,
+    max_states: usize,
+) -> Result<DampingMatricesResponse, ApiError> {
+    let system = RotorSystem::assemble(&p.rotor)
+        .map_err(|e| ApiError::Unsolvable(format!("the rotor cannot be assembled: {e}")))?;
+    let options = report::Options {
+        state_form: form == MatrixForm::State,
+        band,
+        max_deviation: auto,
+        max_states,
+    };
+    let r = report::matrices(&system, &p.damping, &options).map_err(|e| match e {
+        report::ReportError::Damping(e) => damping_error(e, &p.rotor),
+        e @ report::ReportError::Unreachable { .. } => {
+            ApiError::Invalid(Invalid::one("fit.max_deviation", e.to_string()))
+        }
+        e @ report::ReportError::TooLarge { .. } => {
+            ApiError::Invalid(Invalid::one("damping", e.to_string()))
+        }
+    })?;
+    Ok(convert::damping_matrices(&r, p.damping.name()))
 }
 
 /// 404 for any other path.
@@ -188,6 +304,11 @@ fn validate_model(
 
 fn validate_sweep(st: &AppState, req: &SweepRequest) -> Result<(Parsed, SpeedGrid), ApiError> {
     let mut bad = Invalid::default();
+    if let Some(f) = req.max_frequency
+        && !(f.is_finite() && f > 0.0)
+    {
+        bad.push("max_frequency", format!("must be a number > 0 (got {f})"));
+    }
     let grid = match SpeedGrid::parse(&req.speeds, st.config.max_speeds) {
         Ok(g) => Some(g),
         Err(e) => {
@@ -199,20 +320,26 @@ fn validate_sweep(st: &AppState, req: &SweepRequest) -> Result<(Parsed, SpeedGri
     Ok((parsed, grid.expect("validated")))
 }
 
-/// Assembles the rotor and builds its damping model (on the worker pool: solves eigenproblems).
-fn build(p: &Parsed, max_states: usize) -> Result<(RotorSystem, DampedModel), ApiError> {
-    let system = RotorSystem::assemble(&p.rotor)
-        .map_err(|e| ApiError::Unsolvable(format!("the rotor cannot be assembled: {e}")))?;
-    let model = DampedModel::build(&system, &p.damping).map_err(|e| match e {
+/// A rigid-body rotor is an invalid input (its supports, or its stiffness); anything else
+/// is a model the analysis cannot solve.
+fn damping_error(e: DampingError, rotor: &Rotor) -> ApiError {
+    match e {
         DampingError::Modal(ModalError::RigidBody { .. }) => {
-            let path = match p.rotor {
+            let path = match rotor {
                 Rotor::Beam(_) => "rotor.supports",
                 _ => "rotor.stiffness",
             };
             ApiError::Invalid(Invalid::one(path, e.to_string()))
         }
         other => ApiError::Unsolvable(other.to_string()),
-    })?;
+    }
+}
+
+/// Assembles the rotor and builds its damping model (on the worker pool: solves eigenproblems).
+fn build(p: &Parsed, max_states: usize) -> Result<(RotorSystem, DampedModel), ApiError> {
+    let system = RotorSystem::assemble(&p.rotor)
+        .map_err(|e| ApiError::Unsolvable(format!("the rotor cannot be assembled: {e}")))?;
+    let model = DampedModel::build(&system, &p.damping).map_err(|e| damping_error(e, &p.rotor))?;
     if model.states() > max_states {
         return Err(ApiError::Invalid(Invalid::one(
             "damping",

@@ -1,0 +1,450 @@
+//! The equivalent and nonviscous models as matrices for use elsewhere, and how well each
+//! nonviscous damper reproduces the hysteretic loss it replaces.
+//!
+//! With internal coordinates `y` appended to `q`, the nonviscous model is again a rotor
+//! equation of the same form, `M q'' + (C_n + C_r - i Omega G) q' + (K - i Omega C_r) q = F`:
+//! `M`, `G` padded with zeros, `K = [[K + U nu k U^T, -U k], [-k U^T, k]]`, the branch dampers
+//! `c_j` on the diagonal of `C_r` (rotating) or `C_n` (nonrotating). All symmetric and real.
+//!
+//! A damper tuned at `w0` with loss `eta` (branches `k_j = eta k gamma_j`, `r = w / d_j`) has, at
+//! the frequency `w` its material sees (`w - Omega` in the rotor), the loss factor
+//! `eta sum_j gamma_j r / (1 + r^2)` and the added storage stiffness
+//! `eta k sum_j gamma_j (nu_j - 1 + r^2 / (1 + r^2))`. Deviations are relative to `eta`.
+
+use super::nonviscous::{self, BranchSet};
+use super::state::{Branches, SecondOrder, StateModel};
+use super::{DampingError, equivalent};
+use crate::fem::modal::ModalBasis;
+use crate::linalg::{self, CMat, RMat};
+use crate::model::damping::{DampingModel, NonviscousSpec};
+use crate::system::{Dof, RotorSystem};
+
+/// What to report.
+#[derive(Debug, Clone, Default)]
+pub struct Options {
+    /// Also the first-order state matrices.
+    pub state_form: bool,
+    /// Band of the fit (rad/s); default per damper, see [`default_band`].
+    pub band: Option<[f64; 2]>,
+    /// Choose the branches of each side to stay within this deviation over `band`.
+    pub max_deviation: Option<f64>,
+    /// Largest state size allowed.
+    pub max_states: usize,
+}
+
+/// An equivalent or nonviscous model as matrices, with its fit report.
+#[derive(Debug, Clone)]
+pub struct ModelMatrices {
+    /// Second-order matrices (the equivalent model's include `C_eq`).
+    pub augmented: Augmented,
+    /// First-order form and `M^-1`, when asked.
+    pub state: Option<(StateModel, CMat)>,
+    /// Equivalent model: `C_eq,r` and `C_eq,n` alone.
+    pub equivalent: Option<(RMat, RMat)>,
+    /// Per retained mode: natural frequency, rotating and nonrotating loss factors.
+    pub modes: Vec<(f64, f64, f64)>,
+    pub dampers: Vec<DamperFit>,
+    pub added_states: usize,
+    /// Branches per damper used, rotating and nonrotating (nonviscous).
+    pub branches: Option<(usize, usize)>,
+}
+
+/// Why the matrices cannot be given.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ReportError {
+    Damping(DampingError),
+    /// The target deviation cannot be met with this spacing.
+    Unreachable {
+        side: &'static str,
+        spacing: f64,
+        best: f64,
+    },
+    TooLarge {
+        states: usize,
+        max: usize,
+    },
+}
+
+impl std::fmt::Display for ReportError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Damping(e) => write!(f, "{e}"),
+            Self::Unreachable {
+                side,
+                spacing,
+                best,
+            } => write!(
+                f,
+                "not reachable for the {side} dampers with spacing {spacing}: the best is \
+                 {best:.4} with {} branches (use a smaller spacing or a narrower band)",
+                BranchSet::MAX_BRANCHES
+            ),
+            Self::TooLarge { states, max } => write!(
+                f,
+                "the model has {states} states, more than the limit of {max} (WHIRL_MAX_STATES): \
+                 use Guyan reduction, `modes`, or fewer branches"
+            ),
+        }
+    }
+}
+
+/// The matrices of an equivalent or nonviscous model (`None` for the others: they add none).
+pub fn matrices(
+    system: &RotorSystem,
+    model: &DampingModel,
+    options: &Options,
+) -> Result<ModelMatrices, ReportError> {
+    let all = ModalBasis::of(system).map_err(|e| ReportError::Damping(DampingError::Modal(e)))?;
+    let (modes, nv) = match model {
+        DampingModel::Equivalent { modes } => (*modes, None),
+        DampingModel::Nonviscous(spec) => (spec.modes, Some(spec.clone())),
+        _ => (None, None),
+    };
+    let basis = modes.map_or(all.clone(), |k| all.truncated(k));
+    let loss_r = basis.project(&system.hysteretic_rotating);
+    let loss_n = basis.project(&system.hysteretic_nonrotating);
+    let mut viscous = system.clone();
+    let mut equivalent = None;
+    let mut branches = Branches::none(system.n());
+    let mut spec = None;
+    if let Some(mut s) = nv {
+        if let (Some(max_dev), Some(band)) = (options.max_deviation, options.band) {
+            for (side, set, loss) in [
+                ("rotating", &mut s.rotating, &loss_r),
+                ("nonrotating", &mut s.nonrotating, &loss_n),
+            ] {
+                let tunings: Vec<f64> = (0..basis.len())
+                    .filter(|&i| loss[(i, i)] > 0.0)
+                    .map(|i| basis.omega[i])
+                    .collect();
+                if !tunings.is_empty() {
+                    *set = choose_branches(set.spacing(), band, max_dev, &tunings).map_err(
+                        |best| ReportError::Unreachable {
+                            side,
+                            spacing: set.spacing(),
+                            best,
+                        },
+                    )?;
+                }
+            }
+        }
+        branches = nonviscous::branches(system, &basis, &s);
+        spec = Some(s);
+    } else {
+        let c_r = equivalent::equivalent_matrix(&system.hysteretic_rotating, &system.mass, &basis);
+        let c_n =
+            equivalent::equivalent_matrix(&system.hysteretic_nonrotating, &system.mass, &basis);
+        viscous.damping_rotating = &viscous.damping_rotating + &c_r;
+        viscous.damping_nonrotating = &viscous.damping_nonrotating + &c_n;
+        equivalent = Some((c_r, c_n));
+    }
+    let states = 2 * system.n() + branches.len();
+    if states > options.max_states {
+        return Err(ReportError::TooLarge {
+            states,
+            max: options.max_states,
+        });
+    }
+    let state = if options.state_form {
+        let lin = |e: linalg::LinalgError| ReportError::Damping(DampingError::Linalg(e));
+        let sm = StateModel::new(&SecondOrder::viscous(&viscous), &branches).map_err(lin)?;
+        let n = system.n();
+        let identity = CMat::from_fn(n, n, |i, j| {
+            linalg::c64::new(if i == j { 1.0 } else { 0.0 }, 0.0)
+        });
+        Some((sm, linalg::spd_solve(&system.mass, &identity).map_err(lin)?))
+    } else {
+        None
+    };
+    Ok(ModelMatrices {
+        augmented: augmented(&viscous, &branches),
+        state,
+        equivalent,
+        modes: (0..basis.len())
+            .map(|i| {
+                let k = basis.omega[i].powi(2);
+                (basis.omega[i], loss_r[(i, i)] / k, loss_n[(i, i)] / k)
+            })
+            .collect(),
+        dampers: spec
+            .as_ref()
+            .map(|s| fits(system, &basis, s, options.band))
+            .unwrap_or_default(),
+        added_states: branches.len(),
+        branches: spec
+            .as_ref()
+            .map(|s| (s.rotating.count(), s.nonrotating.count())),
+    })
+}
+
+/// A coordinate of the augmented system.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Coordinate {
+    Physical(Dof),
+    Internal {
+        /// Mode (0-based) whose damper the branch belongs to.
+        mode: usize,
+        /// Branch index within the damper (0-based).
+        branch: usize,
+        rotating: bool,
+        /// Relaxation rate `d_j`, 1/s.
+        rate: f64,
+    },
+}
+
+/// The rotor with its nonviscous branches, in second-order form.
+#[derive(Debug, Clone)]
+pub struct Augmented {
+    pub mass: RMat,
+    pub gyroscopic: RMat,
+    pub stiffness: RMat,
+    pub damping_rotating: RMat,
+    pub damping_nonrotating: RMat,
+    pub coordinates: Vec<Coordinate>,
+}
+
+/// Appends the branches' internal coordinates to the viscous rotor.
+pub fn augmented(system: &RotorSystem, br: &Branches) -> Augmented {
+    let (n, p) = (system.n(), br.len());
+    let pad = |a: &RMat| {
+        RMat::from_fn(
+            n + p,
+            n + p,
+            |i, j| if i < n && j < n { a[(i, j)] } else { 0.0 },
+        )
+    };
+    let mut stiffness = pad(&system.stiffness());
+    let mut c_r = pad(&system.damping_rotating);
+    let mut c_n = pad(&system.damping_nonrotating);
+    for j in 0..p {
+        let (k, y) = (br.stiffness[j], n + j);
+        for r in 0..n {
+            for c in 0..n {
+                stiffness[(r, c)] +=
+                    br.coupling[(r, j)] * br.main_stiffness[j] * br.coupling[(c, j)];
+            }
+            stiffness[(r, y)] = -br.coupling[(r, j)] * k;
+            stiffness[(y, r)] = -br.coupling[(r, j)] * k;
+        }
+        stiffness[(y, y)] = k;
+        let c = k / br.rate[j];
+        if br.rotating[j] {
+            c_r[(y, y)] = c;
+        } else {
+            c_n[(y, y)] = c;
+        }
+    }
+    let mut coordinates: Vec<Coordinate> = system
+        .dofs
+        .iter()
+        .map(|d| Coordinate::Physical(*d))
+        .collect();
+    coordinates.extend((0..p).map(|j| Coordinate::Internal {
+        mode: br.mode[j],
+        branch: br.index[j],
+        rotating: br.rotating[j],
+        rate: br.rate[j],
+    }));
+    Augmented {
+        mass: pad(&system.mass),
+        gyroscopic: pad(&system.gyroscopic),
+        stiffness,
+        damping_rotating: c_r,
+        damping_nonrotating: c_n,
+        coordinates,
+    }
+}
+
+/// One point of a damper's fit.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FitSample {
+    pub frequency: f64,
+    pub loss_factor: f64,
+    /// Added storage stiffness relative to the modal stiffness.
+    pub storage_change: f64,
+}
+
+/// How one nonviscous damper reproduces its hysteretic loss over a band.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DamperFit {
+    pub mode: usize,
+    pub rotating: bool,
+    /// `w0`, rad/s.
+    pub tuning_frequency: f64,
+    /// Target loss factor `eta` (modal loss stiffness over modal stiffness).
+    pub loss_factor: f64,
+    pub branches: usize,
+    pub spacing: f64,
+    pub relaxation_rates: Vec<f64>,
+    /// Branch springs `k_j` and dampers `c_j` in modal units (mass-normalised modes).
+    pub spring: Vec<f64>,
+    pub damper: Vec<f64>,
+    pub band: [f64; 2],
+    /// Largest and RMS of `|eta_branches / eta - 1|` over the band (log-spaced samples).
+    pub max_deviation: f64,
+    pub rms_deviation: f64,
+    pub storage_change_at_tuning: f64,
+    pub max_storage_change: f64,
+    pub added_states: usize,
+    pub samples: Vec<FitSample>,
+}
+
+/// Samples per band for the deviations; the reported curve is every tenth.
+const SAMPLES: usize = 401;
+
+/// The default band of a damper: `m` spacings wide, centred on its tuning (one decade per
+/// branch for the default spacing of 10).
+pub fn default_band(set: &BranchSet, w0: f64) -> [f64; 2] {
+    let half = set.spacing().powf(set.count() as f64 / 2.0);
+    [w0 / half, w0 * half]
+}
+
+/// Largest and RMS relative deviation of the loss factor over `band`.
+pub fn deviation(set: &BranchSet, w0: f64, band: [f64; 2]) -> (f64, f64) {
+    let (mut max, mut sum) = (0.0f64, 0.0);
+    for w in log_space(band, SAMPLES) {
+        let d = (set.relative_loss(w, w0) - 1.0).abs();
+        max = max.max(d);
+        sum += d * d;
+    }
+    (max, (sum / SAMPLES as f64).sqrt())
+}
+
+/// Every damper of the model: one per retained mode and side with a nonzero loss.
+pub fn fits(
+    system: &RotorSystem,
+    basis: &ModalBasis,
+    spec: &NonviscousSpec,
+    band: Option<[f64; 2]>,
+) -> Vec<DamperFit> {
+    let loss_n = basis.project(&system.hysteretic_nonrotating);
+    let loss_r = basis.project(&system.hysteretic_rotating);
+    let mut out = vec![];
+    for (i, &w0) in basis.omega.iter().enumerate() {
+        for (set, loss, rotating) in [
+            (&spec.nonrotating, loss_n[(i, i)], false),
+            (&spec.rotating, loss_r[(i, i)], true),
+        ] {
+            if loss <= 0.0 {
+                continue;
+            }
+            let eta = loss / (w0 * w0);
+            let band = band.unwrap_or_else(|| default_band(set, w0));
+            let (max_deviation, rms_deviation) = deviation(set, w0, band);
+            let storage = |w: f64| storage_change(set, eta, w, w0);
+            let all: Vec<f64> = log_space(band, SAMPLES).collect();
+            let rates = set.rates(w0);
+            let spring: Vec<f64> = set.gamma().iter().map(|g| loss * g).collect();
+            out.push(DamperFit {
+                mode: i,
+                rotating,
+                tuning_frequency: w0,
+                loss_factor: eta,
+                branches: set.count(),
+                spacing: set.spacing(),
+                damper: spring.iter().zip(&rates).map(|(k, d)| k / d).collect(),
+                spring,
+                relaxation_rates: rates,
+                band,
+                max_deviation,
+                rms_deviation,
+                storage_change_at_tuning: storage(w0),
+                max_storage_change: all.iter().map(|&w| storage(w).abs()).fold(0.0, f64::max),
+                added_states: set.count(),
+                samples: all
+                    .iter()
+                    .step_by(10)
+                    .map(|&w| FitSample {
+                        frequency: w,
+                        loss_factor: eta * set.relative_loss(w, w0),
+                        storage_change: storage(w),
+                    })
+                    .collect(),
+            });
+        }
+    }
+    out
+}
+
+/// Added storage stiffness over the modal stiffness at `w`.
+pub fn storage_change(set: &BranchSet, eta: f64, w: f64, w0: f64) -> f64 {
+    set.rates(w0)
+        .iter()
+        .zip(set.gamma())
+        .zip(set.nu())
+        .map(|((d, g), nu)| {
+            let r2 = (w / d).powi(2);
+            g * (nu - 1.0 + r2 / (1.0 + r2))
+        })
+        .sum::<f64>()
+        * eta
+}
+
+/// The fewest branches (with `spacing`, plain Maxwell branches) whose loss factor stays within
+/// `max_deviation` of the target over `band` for dampers tuned at each of `tunings`; `Err`
+/// with the best deviation reached at the largest count.
+pub fn choose_branches(
+    spacing: f64,
+    band: [f64; 2],
+    max_deviation: f64,
+    tunings: &[f64],
+) -> Result<BranchSet, f64> {
+    let mut best = f64::INFINITY;
+    for m in 1..=BranchSet::MAX_BRANCHES {
+        let Ok(set) = BranchSet::new(m, spacing, vec![1.0; m]) else {
+            continue;
+        };
+        let worst = tunings
+            .iter()
+            .map(|&w0| deviation(&set, w0, band).0)
+            .fold(0.0, f64::max);
+        if worst <= max_deviation {
+            return Ok(set);
+        }
+        best = best.min(worst);
+    }
+    Err(best)
+}
+
+fn log_space(band: [f64; 2], n: usize) -> impl Iterator<Item = f64> {
+    let (a, b) = (band[0].ln(), band[1].ln());
+    (0..n).map(move |i| (a + (b - a) * i as f64 / (n - 1) as f64).exp())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn more_branches_flatten_the_loss_factor_until_they_span_the_band() {
+        // Four decades around the tuning: the deviation falls until the branches span the
+        // band (5 at spacing 10), then stays at the ripple between relaxation rates (~10.7%).
+        let band = [1.0, 1e4];
+        let dev =
+            |m: usize| deviation(&BranchSet::new(m, 10.0, vec![1.0; m]).unwrap(), 100.0, band).0;
+        for m in 1..5 {
+            assert!(
+                dev(m + 1) < dev(m),
+                "{m} -> {}: {} -> {}",
+                m + 1,
+                dev(m),
+                dev(m + 1)
+            );
+        }
+        for m in 5..=8 {
+            assert!((dev(m) - 0.107).abs() < 0.005, "{m}: {}", dev(m));
+        }
+        // The automatic choice stops at the first count that meets the bound.
+        let set = choose_branches(10.0, band, 0.2, &[100.0]).unwrap();
+        assert_eq!(set.count(), 5);
+        assert!(choose_branches(10.0, band, 0.05, &[100.0]).is_err());
+    }
+
+    #[test]
+    fn plain_maxwell_branches_add_no_static_stiffness_and_the_loss_at_high_frequency() {
+        let set = BranchSet::new(3, 10.0, vec![1.0; 3]).unwrap();
+        assert!(storage_change(&set, 0.02, 1e-9, 1.0).abs() < 1e-15);
+        let total: f64 = set.gamma().iter().sum();
+        assert!((storage_change(&set, 0.02, 1e6, 1.0) - 0.02 * total).abs() < 1e-9);
+    }
+}
