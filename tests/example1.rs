@@ -376,12 +376,11 @@ fn equivalent_damping_on_a_reduced_mode_set_damps_only_those_modes() {
             t[m]
         );
     }
-    for m in 2..4 {
+    for (m, s) in t.iter().enumerate().skip(2) {
         assert!(
-            t[m].re.abs() < 1e-9 * t[m].norm(),
-            "mode {} should be undamped: {}",
-            m + 1,
-            t[m]
+            s.re.abs() < 1e-9 * s.norm(),
+            "mode {} should be undamped: {s}",
+            m + 1
         );
     }
 }
