@@ -572,3 +572,104 @@ async fn the_fit_chooses_the_fewest_branches_that_meet_the_bound() {
     assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
     assert_eq!(paths(&v), vec!["damping.rotating"]);
 }
+
+#[tokio::test]
+async fn time_response_refuses_the_hysteretic_model_and_says_why() {
+    let body = json!({"rotor": nondimensional(0.01, 0.0), "damping": {"model": "hysteretic"},
+                      "speed": 0.5, "duration": 1.0, "output_interval": 0.1});
+    let (status, v) = problem("/v1/time-response", body.to_string().into_bytes()).await;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    let e = &v["errors"][0];
+    assert_eq!(e["path"], "damping.model");
+    let msg = e["message"].as_str().unwrap();
+    assert!(
+        msg.contains("harmonic motion") && msg.contains("nonviscous"),
+        "{msg}"
+    );
+}
+
+#[tokio::test]
+async fn time_response_validation_names_each_bad_field() {
+    let base = || {
+        json!({"rotor": nondimensional(0.01, 0.0), "damping": {"model": "nonviscous"},
+                         "speed": 0.5, "duration": 1.0, "output_interval": 0.1})
+    };
+    let with = |k: &str, v: Value| {
+        let mut b = base();
+        b[k] = v;
+        b
+    };
+    let mut both = base();
+    both["speed_profile"] = json!([[0.0, 0.0], [1.0, 2.0]]);
+    let mut jump = base();
+    jump.as_object_mut().unwrap().remove("speed");
+    jump["speed_profile"] = json!([[0.0, 0.0], [1.0, 2.0], [1.0, 3.0]]);
+    let cases = vec![
+        (with("duration", json!(0.0)), "duration"),
+        (with("output_interval", json!(-1.0)), "output_interval"),
+        (with("output_interval", json!(1e-9)), "output_interval"),
+        (
+            with("forces", json!([{"node": 3, "history": [[0.0, 1.0]]}])),
+            "forces[0].node",
+        ),
+        (
+            with(
+                "forces",
+                json!([{"node": 0, "history": [[1.0, 1.0], [0.5, 2.0]]}]),
+            ),
+            "forces[0].history[1]",
+        ),
+        (
+            with("unbalances", json!([{"node": 0, "amount": -1.0}])),
+            "unbalances[0].amount",
+        ),
+        (with("nodes", json!([0, 7])), "nodes[1]"),
+        (with("tolerance", json!(0.5)), "tolerance"),
+        (both, "speed"),
+        (jump, "speed_profile[2]"),
+    ];
+    for (body, path) in cases {
+        let (status, v) = problem("/v1/time-response", body.to_string().into_bytes()).await;
+        assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{body}");
+        assert!(paths(&v).iter().any(|p| p == path), "{path} not in {v}");
+    }
+}
+
+#[tokio::test]
+async fn time_and_unbalance_responses_through_http() {
+    // Viscous Jeffcott at constant speed, unbalance from t = 0: after the transient the orbit
+    // is the steady one, radius m e W^2 / |k - m W^2 + i W c_n|.
+    let rotor =
+        json!({"type": "jeffcott", "mass": 2.0, "stiffness": 800.0, "damping_nonrotating": 8.0});
+    let (status, v) = post(
+        "/v1/time-response",
+        json!({"rotor": rotor, "damping": {"model": "viscous"}, "speed": 10.0,
+               "unbalances": [{"node": 0, "amount": 1e-3}], "duration": 10.0, "output_interval": 0.01}),
+    )
+    .await;
+    assert_eq!(status, StatusCode::OK, "{v}");
+    assert_eq!(v["method"], "exact");
+    let t = v["time"].as_array().unwrap();
+    assert_eq!(t.len(), 1001);
+    assert_eq!(num(&t[1000]), 10.0);
+    // The transient decays as e^{-c t / 2m}: e^{-20} by t = 10 s.
+    let (x, y) = (
+        num(&v["nodes"][0]["x"][1000]),
+        num(&v["nodes"][0]["y"][1000]),
+    );
+    let steady = 1e-3 * 100.0 / ((800.0f64 - 200.0).powi(2) + 80.0f64.powi(2)).sqrt();
+    assert!(
+        (x.hypot(y) - steady).abs() < 1e-6 * steady,
+        "{} vs {steady}",
+        x.hypot(y)
+    );
+    let (status, u) = post(
+        "/v1/unbalance-response",
+        json!({"rotor": rotor, "damping": {"model": "viscous"}, "speeds": [10.0, 20.0],
+               "unbalances": [{"node": 0, "amount": 1e-3}]}),
+    )
+    .await;
+    assert_eq!(status, StatusCode::OK, "{u}");
+    assert!((num(&u["nodes"][0]["amplitude"][0]) - steady).abs() < 1e-12);
+    assert!(u["note"].as_str().unwrap().contains("synchronous"));
+}

@@ -5,7 +5,9 @@ pub mod campbell;
 pub mod modal;
 pub mod poles;
 pub mod stability;
+pub mod time;
 pub mod tracking;
+pub mod unbalance;
 
 use crate::damping::DampingError;
 use crate::linalg::LinalgError;

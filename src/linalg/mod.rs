@@ -235,6 +235,34 @@ pub fn solve_real_matrix(a: &RMat, b: &RMat) -> Result<RMat, LinalgError> {
     }
 }
 
+/// Solves `A X = B` for a dense complex square `A` (partial pivoting LU).
+pub fn solve_complex(a: &CMat, b: &CMat) -> Result<CMat, LinalgError> {
+    let x = a.partial_piv_lu().solve(b);
+    if all_finite_c(&x) {
+        Ok(x)
+    } else {
+        Err(LinalgError::NonFinite)
+    }
+}
+
+/// A complex LU factorisation, kept to solve many right-hand sides.
+pub struct ComplexLu(faer::linalg::solvers::PartialPivLu<c64>);
+
+impl ComplexLu {
+    pub fn new(a: &CMat) -> Self {
+        ComplexLu(a.partial_piv_lu())
+    }
+
+    /// Solves `A x = b` in place.
+    pub fn solve_in_place(&self, b: &mut [c64]) {
+        let mut m = CMat::from_fn(b.len(), 1, |i, _| b[i]);
+        self.0.solve_in_place(m.as_mut());
+        for (i, bi) in b.iter_mut().enumerate() {
+            *bi = m[(i, 0)];
+        }
+    }
+}
+
 /// Whether a symmetric matrix is positive definite (Cholesky succeeds).
 pub fn is_positive_definite(a: &RMat) -> bool {
     all_finite_r(a) && a.llt(Side::Lower).is_ok()

@@ -600,3 +600,130 @@ pub struct DampingMatricesResponse {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub branches_nonrotating: Option<usize>,
 }
+
+/// A nonrotating force with a fixed direction.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ForceInput {
+    pub node: i64,
+    /// Angle of the force from the x axis, rad.
+    #[serde(default)]
+    pub direction: f64,
+    /// `[[t, F], ...]`, s and N, piecewise linear; a repeated time is a jump; held constant
+    /// before the first and after the last point.
+    pub history: Vec<[f64; 2]>,
+}
+
+/// An unbalance rotating with the shaft.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct UnbalanceInput {
+    pub node: i64,
+    /// `m e`, kg m (>= 0).
+    pub amount: f64,
+    /// Angle on the rotor, rad (0: on the x axis at t = 0).
+    #[serde(default)]
+    pub phase: f64,
+    /// Time it appears, s (default 0); later than 0 makes a sudden unbalance (blade loss).
+    #[serde(default)]
+    pub from: f64,
+}
+
+/// Body of `POST /v1/time-response`.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct TimeResponseRequest {
+    pub rotor: RotorInput,
+    /// `viscous`, `equivalent` or `nonviscous` (hysteretic damping has no time-domain form).
+    pub damping: DampingInput,
+    /// Constant spin speed, rad/s (give this or `speed_profile`).
+    #[serde(default)]
+    pub speed: Option<f64>,
+    /// `[[t, Omega], ...]`: piecewise-linear spin speed (run-up, run-down), held after the last
+    /// point; no jumps.
+    #[serde(default)]
+    pub speed_profile: Option<Vec<[f64; 2]>>,
+    #[serde(default)]
+    pub forces: Vec<ForceInput>,
+    #[serde(default)]
+    pub unbalances: Vec<UnbalanceInput>,
+    /// Length of the simulation, s.
+    pub duration: f64,
+    /// Output sampling interval, s: samples at 0, dt, 2 dt, ... up to `duration`.
+    pub output_interval: f64,
+    /// Nodes to report (default: all nodes with a translation).
+    #[serde(default)]
+    pub nodes: Option<Vec<i64>>,
+    /// Relative tolerance of the implicit integrator (varying speed), in [1e-12, 1e-2];
+    /// default 1e-6.
+    #[serde(default)]
+    pub tolerance: Option<f64>,
+}
+
+/// The response of one node.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct NodeHistory {
+    pub node: usize,
+    /// Displacement along x, m.
+    pub x: Vec<f64>,
+    /// Displacement along y, m.
+    pub y: Vec<f64>,
+}
+
+/// Answer of `POST /v1/time-response`.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct TimeResponseResponse {
+    pub time: Vec<f64>,
+    pub nodes: Vec<NodeHistory>,
+    /// `exact` (constant speed: modal superposition, exact for piecewise-linear forces and
+    /// unbalance) or `implicit` (TR-BDF2, L-stable, error-controlled).
+    pub method: String,
+    /// Integration steps taken (implicit) or 0.
+    pub steps: usize,
+    /// Size of the state.
+    pub states: usize,
+}
+
+/// Unbalance for the steady response (no `from`).
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SteadyUnbalanceInput {
+    pub node: i64,
+    /// `m e`, kg m.
+    pub amount: f64,
+    #[serde(default)]
+    pub phase: f64,
+}
+
+/// Body of `POST /v1/unbalance-response`.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct UnbalanceResponseRequest {
+    pub rotor: RotorInput,
+    pub damping: DampingInput,
+    pub speeds: SpeedsInput,
+    pub unbalances: Vec<SteadyUnbalanceInput>,
+    /// Nodes to report (default: all nodes with a translation).
+    #[serde(default)]
+    pub nodes: Option<Vec<i64>>,
+}
+
+/// Steady synchronous response of one node.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct NodeUnbalance {
+    pub node: usize,
+    /// Radius of the (circular, forward) orbit, m, zero to peak.
+    pub amplitude: Vec<f64>,
+    /// Angle of the displacement relative to the rotor's reference (the unbalance at phase
+    /// 0), rad: `r = amplitude e^{i (Omega t + phase)}`.
+    pub phase: Vec<f64>,
+}
+
+/// Answer of `POST /v1/unbalance-response`.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct UnbalanceResponseResponse {
+    pub speeds: Vec<f64>,
+    pub nodes: Vec<NodeUnbalance>,
+    /// How the damping model treats synchronous whirl.
+    pub note: String,
+}

@@ -37,6 +37,15 @@ impl Rotor {
         }
     }
 
+    /// Number of nodes (each with a translation).
+    pub fn node_count(&self) -> usize {
+        match self {
+            Rotor::Jeffcott(_) => 1,
+            Rotor::Beam(b) => b.nodes(),
+            Rotor::Matrices(m) => m.mass.nrows(),
+        }
+    }
+
     /// Complex degrees of freedom of the assembled (and reduced) system.
     pub fn dof_count(&self) -> usize {
         match self {

@@ -20,6 +20,11 @@ pub struct Config {
     /// `WHIRL_MAX_STATES`: largest first-order eigenproblem, internal coordinates included
     /// (default 1500).
     pub max_states: usize,
+    /// `WHIRL_MAX_SAMPLES`: most output values of a time response, samples times nodes
+    /// (default 2 000 000).
+    pub max_samples: usize,
+    /// `WHIRL_MAX_STEPS`: most steps of the implicit integrator (default 500 000).
+    pub max_steps: usize,
     /// `WHIRL_LOG_FORMAT`: `text` (default) or `json`.
     pub log_json: bool,
 }
@@ -35,6 +40,8 @@ impl Default for Config {
             max_speeds: 2000,
             max_dofs: 1000,
             max_states: 1500,
+            max_samples: 2_000_000,
+            max_steps: 500_000,
             log_json: false,
         }
     }
@@ -88,6 +95,8 @@ impl Config {
             max_speeds: num(&get, "WHIRL_MAX_SPEEDS", d.max_speeds, 2)?,
             max_dofs: num(&get, "WHIRL_MAX_DOFS", d.max_dofs, 1)?,
             max_states: num(&get, "WHIRL_MAX_STATES", d.max_states, 2)?,
+            max_samples: num(&get, "WHIRL_MAX_SAMPLES", d.max_samples, 2)?,
+            max_steps: num(&get, "WHIRL_MAX_STEPS", d.max_steps, 10)?,
             log_json,
         })
     }

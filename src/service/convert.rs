@@ -4,6 +4,7 @@ use crate::analysis::campbell::CampbellResult;
 use crate::analysis::modal::ModalResult;
 use crate::analysis::poles;
 use crate::analysis::stability::Threshold;
+use crate::analysis::time::{Method, TimeResult};
 use crate::damping::StateModel;
 use crate::damping::report::{Augmented, Coordinate, DamperFit, ModelMatrices};
 use crate::linalg::{CMat, RMat, c64};
@@ -240,5 +241,59 @@ pub fn damping_matrices(r: &ModelMatrices, model: &str) -> api::DampingMatricesR
         added_states: r.added_states,
         branches_rotating: r.branches.map(|b| b.0),
         branches_nonrotating: r.branches.map(|b| b.1),
+    }
+}
+
+pub fn time_response(r: &TimeResult) -> api::TimeResponseResponse {
+    api::TimeResponseResponse {
+        time: r.time.clone(),
+        nodes: r
+            .nodes
+            .iter()
+            .map(|(node, h)| api::NodeHistory {
+                node: *node,
+                x: h.iter().map(|z| z.re).collect(),
+                y: h.iter().map(|z| z.im).collect(),
+            })
+            .collect(),
+        method: match r.method {
+            Method::Exact => "exact",
+            Method::Implicit => "implicit",
+        }
+        .into(),
+        steps: r.steps,
+        states: r.states,
+    }
+}
+
+pub fn unbalance_response(
+    speeds: &[f64],
+    nodes: &[usize],
+    q: &[Vec<c64>],
+    model: &str,
+) -> api::UnbalanceResponseResponse {
+    let note = match model {
+        "hysteretic" => {
+            "hysteretic: the rotor material sees zero frequency in synchronous whirl, where the \
+             model is undefined; it is evaluated with sgn(0) = 0, so only the nonrotating loss \
+             acts (the limit the other models share)"
+        }
+        _ => {
+            "in synchronous whirl the rotor material sees zero frequency: rotating damping \
+             (viscous, equivalent or nonviscous) does no work; only nonrotating damping acts"
+        }
+    };
+    api::UnbalanceResponseResponse {
+        speeds: speeds.to_vec(),
+        nodes: nodes
+            .iter()
+            .enumerate()
+            .map(|(k, &node)| api::NodeUnbalance {
+                node,
+                amplitude: q.iter().map(|row| row[k].norm()).collect(),
+                phase: q.iter().map(|row| row[k].arg()).collect(),
+            })
+            .collect(),
+        note: note.into(),
     }
 }

@@ -51,6 +51,8 @@ pub fn router(state: AppState) -> (Router, utoipa::openapi::OpenApi) {
         .routes(utoipa_axum::routes!(routes::campbell))
         .routes(utoipa_axum::routes!(routes::stability))
         .routes(utoipa_axum::routes!(routes::damping_matrices))
+        .routes(utoipa_axum::routes!(routes::time_response))
+        .routes(utoipa_axum::routes!(routes::unbalance_response))
         .with_state(state)
         .split_for_parts();
     let router = router

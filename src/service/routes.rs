@@ -9,6 +9,8 @@ use super::convert;
 use super::error::ApiError;
 use super::json::ApiJson;
 use crate::analysis;
+use crate::analysis::time::{SpeedLaw, TimeSpec};
+use crate::analysis::unbalance::SteadyUnbalance;
 use crate::damping::report;
 use crate::damping::{DampedModel, DampingError};
 use crate::fem::modal::ModalError;
@@ -16,9 +18,11 @@ use crate::model::Invalid;
 use crate::model::api::{
     CampbellResponse, DampingInput, DampingMatricesRequest, DampingMatricesResponse, MatrixForm,
     ModalRequest, ModalResponse, Problem, RotorInput, StabilityResponse, Status, SweepRequest,
+    TimeResponseRequest, TimeResponseResponse, UnbalanceResponseRequest, UnbalanceResponseResponse,
 };
 use crate::model::damping::DampingModel;
-use crate::model::error::non_negative;
+use crate::model::error::{finite, non_negative, positive};
+use crate::model::loads::{Force, Pwl, Unbalance};
 use crate::model::rotor::Rotor;
 use crate::model::speeds::SpeedGrid;
 use crate::system::RotorSystem;
@@ -257,6 +261,255 @@ fn damping_report(
         }
     })?;
     Ok(convert::damping_matrices(&r, p.damping.name()))
+}
+
+/// Time response: shocks, run-ups through critical speeds, blade loss.
+///
+/// Nonrotating forces with piecewise-linear histories and unbalances rotating with the shaft
+/// (appearing at `from`: blade loss), at a constant speed or along a piecewise-linear speed
+/// profile (the unbalance force includes the angular-acceleration term). From rest. At constant
+/// speed the response is exact (modal superposition); with a varying speed it is integrated
+/// by TR-BDF2 (L-stable, error-controlled). The hysteretic model is refused: it is defined for
+/// harmonic motion only; `nonviscous` is its time-domain model.
+#[utoipa::path(post, path = "/v1/time-response", tag = "analyses", request_body = TimeResponseRequest,
+    responses(
+        (status = 200, description = "Displacements of the nodes", body = TimeResponseResponse),
+        (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
+        (status = 413, description = "Body too large", body = Problem, content_type = "application/problem+json"),
+        (status = 422, description = "Invalid model", body = Problem, content_type = "application/problem+json"),
+        (status = 503, description = "Queue full; see Retry-After", body = Problem, content_type = "application/problem+json")))]
+pub async fn time_response(
+    State(st): State<AppState>,
+    ApiJson(req): ApiJson<TimeResponseRequest>,
+) -> Result<Json<TimeResponseResponse>, ApiError> {
+    let mut bad = Invalid::default();
+    if matches!(req.damping, DampingInput::Hysteretic(_)) {
+        bad.push(
+            "damping.model",
+            "the hysteretic model is defined for harmonic motion only and cannot be integrated \
+             in time; use `nonviscous` (its time-domain model) or `equivalent`",
+        );
+    }
+    let speed = match (req.speed, &req.speed_profile) {
+        (Some(w), None) => bad.check("speed", non_negative(w)).map(SpeedLaw::Constant),
+        (None, Some(p)) => {
+            let law = Pwl::parse(p, "speed_profile", false, &mut bad);
+            if p.iter().any(|q| q[1] < 0.0) {
+                bad.push("speed_profile", "speeds must be >= 0");
+            }
+            law.map(SpeedLaw::Profile)
+        }
+        (Some(_), Some(_)) => {
+            bad.push("speed", "give `speed` or `speed_profile`, not both");
+            None
+        }
+        (None, None) => {
+            bad.push("speed", "give `speed` (constant) or `speed_profile`");
+            None
+        }
+    };
+    let duration = bad.check("duration", positive(req.duration));
+    let dt = bad.check("output_interval", positive(req.output_interval));
+    let tolerance = match req.tolerance {
+        None => Some(1e-6),
+        Some(x) if (1e-12..=1e-2).contains(&x) => Some(x),
+        Some(x) => {
+            bad.push("tolerance", format!("must be in [1e-12, 1e-2] (got {x})"));
+            None
+        }
+    };
+    let parsed = validate_model(&st, &req.rotor, &req.damping, bad)?;
+    let mut bad = Invalid::default();
+    let nodes = parsed.rotor.node_count();
+    let node = |bad: &mut Invalid, at: String, k: i64| -> Option<usize> {
+        if k >= 0 && (k as u64) < nodes as u64 {
+            Some(k as usize)
+        } else {
+            bad.push(
+                at,
+                format!("node {k} does not exist (nodes 0 to {})", nodes - 1),
+            );
+            None
+        }
+    };
+    let mut forces = vec![];
+    for (i, f) in req.forces.iter().enumerate() {
+        let at = format!("forces[{i}]");
+        let n = node(&mut bad, format!("{at}.node"), f.node);
+        let dir = bad.check(&format!("{at}.direction"), finite(f.direction));
+        let h = Pwl::parse(&f.history, &format!("{at}.history"), true, &mut bad);
+        if let (Some(node), Some(direction), Some(history)) = (n, dir, h) {
+            forces.push(Force {
+                node,
+                direction,
+                history,
+            });
+        }
+    }
+    let mut unbalances = vec![];
+    for (i, u) in req.unbalances.iter().enumerate() {
+        let at = format!("unbalances[{i}]");
+        let n = node(&mut bad, format!("{at}.node"), u.node);
+        let amount = bad.check(&format!("{at}.amount"), non_negative(u.amount));
+        let phase = bad.check(&format!("{at}.phase"), finite(u.phase));
+        let from = bad.check(&format!("{at}.from"), non_negative(u.from));
+        if let (Some(node), Some(amount), Some(phase), Some(from)) = (n, amount, phase, from) {
+            unbalances.push(Unbalance {
+                node,
+                amount,
+                phase,
+                from,
+            });
+        }
+    }
+    let out = report_nodes(&mut bad, &req.nodes, nodes, node);
+    if let (Some(d), Some(h)) = (duration, dt) {
+        let samples = (d / h).floor() + 1.0;
+        if samples * out.len().max(1) as f64 > st.config.max_samples as f64 {
+            bad.push(
+                "output_interval",
+                format!(
+                    "{samples} samples x {} nodes exceed the limit of {} values \
+                     (WHIRL_MAX_SAMPLES): use a longer interval or fewer nodes",
+                    out.len(),
+                    st.config.max_samples
+                ),
+            );
+        }
+    }
+    if !bad.is_empty() {
+        return Err(bad.into());
+    }
+    let spec = TimeSpec {
+        speed: speed.expect("validated"),
+        forces,
+        unbalances,
+        duration: duration.expect("validated"),
+        output_interval: dt.expect("validated"),
+        nodes: out,
+        tolerance: tolerance.expect("validated"),
+        max_steps: st.config.max_steps,
+    };
+    let max_states = st.config.max_states;
+    st.pool
+        .run(move || {
+            let (system, model) = build(&parsed, max_states)?;
+            let r = analysis::time::time_response(&system, &model, &spec, false)
+                .map_err(|e| ApiError::Unsolvable(e.to_string()))?;
+            Ok(Json(convert::time_response(&r)))
+        })
+        .await
+}
+
+/// Steady synchronous response to unbalance against speed.
+///
+/// Amplitude (radius of the circular forward orbit) and phase of every requested node at each
+/// speed, for all four models. In synchronous whirl the rotor material sees zero frequency:
+/// rotating viscous, equivalent and nonviscous damping do no work there, and the hysteretic
+/// model (undefined at zero frequency) is evaluated with `sgn 0 = 0`, the same limit; the
+/// answer's `note` says so.
+#[utoipa::path(post, path = "/v1/unbalance-response", tag = "analyses", request_body = UnbalanceResponseRequest,
+    responses(
+        (status = 200, description = "Amplitude and phase per node and speed", body = UnbalanceResponseResponse),
+        (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
+        (status = 413, description = "Body too large", body = Problem, content_type = "application/problem+json"),
+        (status = 422, description = "Invalid model", body = Problem, content_type = "application/problem+json"),
+        (status = 503, description = "Queue full; see Retry-After", body = Problem, content_type = "application/problem+json")))]
+pub async fn unbalance_response(
+    State(st): State<AppState>,
+    ApiJson(req): ApiJson<UnbalanceResponseRequest>,
+) -> Result<Json<UnbalanceResponseResponse>, ApiError> {
+    let mut bad = Invalid::default();
+    let grid = match SpeedGrid::parse(&req.speeds, st.config.max_speeds) {
+        Ok(g) => Some(g),
+        Err(e) => {
+            bad.extend(e);
+            None
+        }
+    };
+    if req.unbalances.is_empty() {
+        bad.push("unbalances", "needs at least one unbalance");
+    }
+    let parsed = validate_model(&st, &req.rotor, &req.damping, bad)?;
+    let mut bad = Invalid::default();
+    let nodes = parsed.rotor.node_count();
+    let node = |bad: &mut Invalid, at: String, k: i64| -> Option<usize> {
+        if k >= 0 && (k as u64) < nodes as u64 {
+            Some(k as usize)
+        } else {
+            bad.push(
+                at,
+                format!("node {k} does not exist (nodes 0 to {})", nodes - 1),
+            );
+            None
+        }
+    };
+    let mut unb = vec![];
+    for (i, u) in req.unbalances.iter().enumerate() {
+        let at = format!("unbalances[{i}]");
+        let n = node(&mut bad, format!("{at}.node"), u.node);
+        let amount = bad.check(&format!("{at}.amount"), non_negative(u.amount));
+        let phase = bad.check(&format!("{at}.phase"), finite(u.phase));
+        if let (Some(n), Some(a), Some(p)) = (n, amount, phase) {
+            unb.push((n, a, p));
+        }
+    }
+    let out = report_nodes(&mut bad, &req.nodes, nodes, node);
+    if !bad.is_empty() {
+        return Err(bad.into());
+    }
+    let grid = grid.expect("validated");
+    let max_states = st.config.max_states;
+    let model_name = parsed.damping.name();
+    st.pool
+        .run(move || {
+            let (system, model) = build(&parsed, max_states)?;
+            let dof = |n: usize| analysis::time::translation(&system, n);
+            let unbalances: Vec<SteadyUnbalance> = unb
+                .iter()
+                .map(|&(n, amount, phase)| SteadyUnbalance {
+                    dof: dof(n),
+                    amount,
+                    phase,
+                })
+                .collect();
+            let dofs: Vec<usize> = out.iter().map(|&n| dof(n)).collect();
+            let q = analysis::unbalance::unbalance_response(
+                &system,
+                &model,
+                grid.as_slice(),
+                &unbalances,
+                &dofs,
+            )?;
+            Ok(Json(convert::unbalance_response(
+                grid.as_slice(),
+                &out,
+                &q,
+                model_name,
+            )))
+        })
+        .await
+}
+
+/// The nodes to report: the requested ones (validated) or all.
+fn report_nodes(
+    bad: &mut Invalid,
+    requested: &Option<Vec<i64>>,
+    nodes: usize,
+    node: impl Fn(&mut Invalid, String, i64) -> Option<usize>,
+) -> Vec<usize> {
+    match requested {
+        None => (0..nodes).collect(),
+        Some(list) => {
+            if list.is_empty() {
+                bad.push("nodes", "needs at least one node (or omit it for all)");
+            }
+            list.iter()
+                .enumerate()
+                .filter_map(|(i, &k)| node(bad, format!("nodes[{i}]"), k))
+                .collect()
+        }
+    }
 }
 
 /// 404 for any other path.
