@@ -84,10 +84,16 @@ async fn run(config: Config) -> Result<(), String> {
         queue = config.queue,
         "whirl listening (docs at /docs, OpenAPI at /openapi.json)"
     );
-    axum::serve(listener, service::app(config))
+    let grace = Duration::from_secs(config.shutdown_grace);
+    let (app, state) = service::app_with_state(config);
+    axum::serve(listener, app)
         .with_graceful_shutdown(shutdown_signal())
         .await
-        .map_err(|e| e.to_string())
+        .map_err(|e| e.to_string())?;
+    // No new connections now; jobs get the grace period, then are cancelled with the reason.
+    state.jobs.shutdown(grace).await;
+    tracing::info!("stopped");
+    Ok(())
 }
 
 async fn shutdown_signal() {

@@ -9,6 +9,7 @@ use http_body_util::BodyExt;
 use serde_json::{Value, json};
 use tower::ServiceExt;
 use whirl::analysis::campbell::campbell;
+use whirl::analysis::control::Control;
 use whirl::analysis::poles::{Whirl, poles_at};
 use whirl::damping::DampedModel;
 use whirl::fem::modal::ModalBasis;
@@ -103,7 +104,7 @@ fn crossing(coupling: f64) -> RotorSystem {
 
 fn forward_branches(s: &RotorSystem, speeds: &[f64]) -> Vec<Vec<f64>> {
     let m = DampedModel::build(s, &DampingModel::Viscous).unwrap();
-    let c = campbell(&m, speeds).unwrap();
+    let c = campbell(&m, speeds, &Control::default()).unwrap();
     c.branches
         .iter()
         .filter(|b| b.whirl == Whirl::Forward)
@@ -389,7 +390,7 @@ fn the_compressor_threshold_with_equivalent_damping_is_supercritical_in_mode_1()
     let model =
         DampedModel::build(&compressor(), &DampingModel::Equivalent { modes: Some(8) }).unwrap();
     let speeds: Vec<f64> = (0..=30).map(|i| i as f64 * 100.0).collect();
-    let t = whirl::analysis::stability::stability(&model, &speeds)
+    let t = whirl::analysis::stability::stability(&model, &speeds, &Control::default())
         .unwrap()
         .unwrap();
     assert_eq!((t.mode, t.pole.whirl), (1, Whirl::Forward));
@@ -398,7 +399,7 @@ fn the_compressor_threshold_with_equivalent_damping_is_supercritical_in_mode_1()
     let h = DampedModel::build(&compressor(), &DampingModel::Hysteretic).unwrap();
     let coarse: Vec<f64> = (0..=10).map(|i| i as f64 * 300.0).collect();
     assert!(
-        whirl::analysis::stability::stability(&h, &coarse)
+        whirl::analysis::stability::stability(&h, &coarse, &Control::default())
             .unwrap()
             .is_none()
     );

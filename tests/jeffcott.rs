@@ -5,6 +5,7 @@ mod common;
 
 use common::assert_printed;
 use whirl::analysis::campbell::campbell;
+use whirl::analysis::control::Control;
 use whirl::analysis::poles::{PoleSet, Whirl, poles_at};
 use whirl::analysis::stability::stability;
 use whirl::damping::DampedModel;
@@ -118,7 +119,9 @@ fn equivalent_threshold_is_eq_10() {
         )
         .unwrap();
         let speeds: Vec<f64> = (0..41).map(|i| i as f64 * 0.25).collect();
-        let t = stability(&m, &speeds).unwrap().expect("unstable in range");
+        let t = stability(&m, &speeds, &Control::default())
+            .unwrap()
+            .expect("unstable in range");
         let expected = 1.0 + eta_n / eta_r;
         assert!(
             (t.speed - expected).abs() <= 1e-6 * expected,
@@ -167,13 +170,19 @@ fn hysteretic_threshold_is_where_the_unstable_root_becomes_consistent() {
     let (eta_n, eta_r) = (0.005, 0.01);
     let m = DampedModel::build(&system(eta_r, eta_n), &DampingModel::Hysteretic).unwrap();
     let speeds: Vec<f64> = (0..21).map(|i| i as f64 * 0.1).collect();
-    let t = stability(&m, &speeds).unwrap().expect("unstable");
+    let t = stability(&m, &speeds, &Control::default())
+        .unwrap()
+        .expect("unstable");
     let s = c64::new(0.0, 1.0) * c64::new(1.0, -(eta_r - eta_n)).sqrt();
     assert!(s.re > 0.0);
     assert!((t.speed - s.im).abs() <= 1e-9, "{} vs {}", t.speed, s.im);
     // eta_n > eta_r: stable at all speeds (section 2.3).
     let m = DampedModel::build(&system(0.01, 0.02), &DampingModel::Hysteretic).unwrap();
-    assert!(stability(&m, &speeds).unwrap().is_none());
+    assert!(
+        stability(&m, &speeds, &Control::default())
+            .unwrap()
+            .is_none()
+    );
 }
 
 #[test]
@@ -236,7 +245,7 @@ fn viscous_jeffcott_matches_the_closed_form() {
         }
     }
     // Threshold of viscous rotating damping: Omega = w_n (1 + c_n / c_r) = 2055.5 rad/s.
-    let t = stability(&m, &[0.0, 1000.0, 2000.0, 3000.0])
+    let t = stability(&m, &[0.0, 1000.0, 2000.0, 3000.0], &Control::default())
         .unwrap()
         .unwrap();
     let expected = (1.2e6f64 / 3.0).sqrt() * (1.0 + 90.0 / 40.0);
@@ -247,7 +256,7 @@ fn viscous_jeffcott_matches_the_closed_form() {
 fn campbell_tracks_forward_and_backward_and_keeps_internal_poles_out() {
     let m = DampedModel::build(&system(0.01, 0.0), &nvd(4)).unwrap();
     let speeds: Vec<f64> = (0..=40).map(|i| i as f64 * 0.1).collect();
-    let c = campbell(&m, &speeds).unwrap();
+    let c = campbell(&m, &speeds, &Control::default()).unwrap();
     assert_eq!(c.branches.len(), 2);
     let fwd = c
         .branches
@@ -289,7 +298,7 @@ fn hysteretic_campbell_reports_undefined_values_as_missing_not_invented() {
     let (eta_n, eta_r) = (0.02, 0.04);
     let m = DampedModel::build(&system(eta_r, eta_n), &DampingModel::Hysteretic).unwrap();
     let speeds: Vec<f64> = (0..=200).map(|i| 0.9 + i as f64 * 0.001).collect();
-    let c = campbell(&m, &speeds).unwrap();
+    let c = campbell(&m, &speeds, &Control::default()).unwrap();
     let fwd = c
         .branches
         .iter()

@@ -3,6 +3,7 @@
 //! unbalance response against the closed form.
 
 use serde_json::{Value, json};
+use whirl::analysis::control::Control;
 use whirl::analysis::poles::{Whirl, poles_at};
 use whirl::analysis::time::{Method, SpeedLaw, TimeResult, TimeSpec, time_response};
 use whirl::analysis::unbalance::{SteadyUnbalance, unbalance_response};
@@ -66,7 +67,14 @@ fn spec(
 }
 
 fn run(s: &RotorSystem, model: &DampingModel, spec: &TimeSpec, implicit: bool) -> TimeResult {
-    time_response(s, &DampedModel::build(s, model).unwrap(), spec, implicit).unwrap()
+    time_response(
+        s,
+        &DampedModel::build(s, model).unwrap(),
+        spec,
+        implicit,
+        &Control::default(),
+    )
+    .unwrap()
 }
 
 /// Decay rate and frequency of a damped cosine, from its peaks after `from`.
@@ -307,6 +315,7 @@ fn run_ups_through_the_first_critical_speed() {
             phase: 0.0,
         }],
         &[dof],
+        &Control::default(),
     )
     .unwrap();
     let (steady_peak, crit) = steady.iter().zip(&speeds).fold((0.0, 0.0), |m, (q, &w)| {
@@ -387,6 +396,7 @@ fn unbalance_response_of_a_viscous_jeffcott_is_the_closed_form() {
                 phase: 0.5,
             }],
             &[0],
+            &Control::default(),
         )
         .unwrap();
         for (w, row) in speeds.iter().zip(&q) {

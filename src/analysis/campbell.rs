@@ -2,6 +2,7 @@
 //! forward critical speeds and the threshold of instability.
 
 use super::AnalysisError;
+use super::control::Control;
 use super::poles::Whirl;
 use super::stability::{Threshold, sweep, threshold};
 use super::tracking::track;
@@ -27,8 +28,13 @@ pub struct CampbellResult {
     pub threshold: Option<Threshold>,
 }
 
-pub fn campbell(model: &DampedModel, speeds: &[f64]) -> Result<CampbellResult, AnalysisError> {
-    let sets = sweep(model, speeds)?;
+pub fn campbell(
+    model: &DampedModel,
+    speeds: &[f64],
+    control: &Control,
+) -> Result<CampbellResult, AnalysisError> {
+    control.expect(super::stability::work(speeds.len()));
+    let sets = sweep(model, speeds, control)?;
     let tracks = track(&sets, 2 * model.dofs());
     let mut branches: Vec<Branch> = tracks
         .into_iter()
@@ -50,7 +56,8 @@ pub fn campbell(model: &DampedModel, speeds: &[f64]) -> Result<CampbellResult, A
         .collect();
     number_modes(&mut branches);
     let critical_speeds = critical_speeds(speeds, &branches);
-    let threshold = threshold(model, &sets)?;
+    let threshold = threshold(model, &sets, control)?;
+    control.advance(super::stability::work(0));
     Ok(CampbellResult {
         speeds: speeds.to_vec(),
         branches,

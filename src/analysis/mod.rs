@@ -2,6 +2,7 @@
 //! (`campbell`), and the threshold of instability (`stability`).
 
 pub mod campbell;
+pub mod control;
 pub mod modal;
 pub mod poles;
 pub mod stability;
@@ -17,6 +18,7 @@ use crate::linalg::LinalgError;
 pub enum AnalysisError {
     Damping(DampingError),
     Linalg(LinalgError),
+    Cancelled,
 }
 
 impl std::fmt::Display for AnalysisError {
@@ -24,6 +26,7 @@ impl std::fmt::Display for AnalysisError {
         match self {
             Self::Damping(e) => write!(f, "{e}"),
             Self::Linalg(e) => write!(f, "{e}"),
+            Self::Cancelled => write!(f, "cancelled"),
         }
     }
 }
@@ -39,5 +42,11 @@ impl From<DampingError> for AnalysisError {
 impl From<LinalgError> for AnalysisError {
     fn from(e: LinalgError) -> Self {
         Self::Linalg(e)
+    }
+}
+
+impl From<control::Cancelled> for AnalysisError {
+    fn from(_: control::Cancelled) -> Self {
+        Self::Cancelled
     }
 }

@@ -10,6 +10,7 @@
 //! step at a critical speed is exactly such a jump.
 
 use super::AnalysisError;
+use super::control::Control;
 use super::poles::{Pole, PoleSet, poles_at};
 use crate::damping::DampedModel;
 use rayon::prelude::*;
@@ -26,24 +27,58 @@ pub struct Threshold {
     pub mode: usize,
 }
 
-/// Pole sets over a grid of speeds, computed in parallel.
-pub fn sweep(model: &DampedModel, speeds: &[f64]) -> Result<Vec<PoleSet>, AnalysisError> {
+/// Pole sets over a grid of speeds, computed in parallel (one unit of progress per speed).
+pub fn sweep(
+    model: &DampedModel,
+    speeds: &[f64],
+    control: &Control,
+) -> Result<Vec<PoleSet>, AnalysisError> {
     speeds
         .par_iter()
-        .map(|&w| poles_at(model, w).map_err(AnalysisError::from))
+        .map(|&w| {
+            control.check()?;
+            let set = poles_at(model, w)?;
+            control.advance(1);
+            Ok(set)
+        })
         .collect()
 }
 
+/// Refinement evaluations counted in the progress (most searches need fewer).
+const REFINEMENT_WORK: u64 = 40;
+
+/// Work units of a stability search over `n` grid speeds: the grid and the refinement.
+pub fn work(n: usize) -> u64 {
+    n as u64 + REFINEMENT_WORK
+}
+
 /// Threshold over the range of `speeds`, the grid only bracketing it.
-pub fn stability(model: &DampedModel, speeds: &[f64]) -> Result<Option<Threshold>, AnalysisError> {
-    let sets = sweep(model, speeds)?;
-    threshold(model, &sets)
+pub fn stability(
+    model: &DampedModel,
+    speeds: &[f64],
+    control: &Control,
+) -> Result<Option<Threshold>, AnalysisError> {
+    stability_curve(model, speeds, control).map(|(t, _)| t)
+}
+
+/// The threshold and the largest decay rate at each grid speed.
+pub fn stability_curve(
+    model: &DampedModel,
+    speeds: &[f64],
+    control: &Control,
+) -> Result<(Option<Threshold>, Vec<f64>), AnalysisError> {
+    control.expect(work(speeds.len()));
+    let sets = sweep(model, speeds, control)?;
+    let t = threshold(model, &sets, control)?;
+    control.advance(REFINEMENT_WORK);
+    Ok((t, sets.iter().map(PoleSet::max_decay_rate).collect()))
 }
 
 /// Threshold from pole sets already computed on a grid (as a Campbell sweep has them).
 pub fn threshold(
     model: &DampedModel,
     sets: &[PoleSet],
+    control: &Control,
 ) -> Result<Option<Threshold>, AnalysisError> {
     let Some(first) = sets.iter().position(|s| s.growth() > 0.0) else {
         return Ok(None);
@@ -77,6 +112,7 @@ pub fn threshold(
         if !(x > lo && x < hi) {
             x = 0.5 * (lo + hi);
         }
+        control.check()?;
         let set = poles_at(model, x)?;
         let g = f(&set);
         if g > 0.0 {

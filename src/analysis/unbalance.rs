@@ -11,6 +11,7 @@
 //! share: only the nonrotating loss `i K''_n` acts.
 
 use super::AnalysisError;
+use super::control::Control;
 use crate::damping::{DampedModel, ModelKind};
 use crate::linalg::{self, CMat, c64};
 use crate::system::RotorSystem;
@@ -31,11 +32,14 @@ pub fn unbalance_response(
     speeds: &[f64],
     unbalances: &[SteadyUnbalance],
     out: &[usize],
+    control: &Control,
 ) -> Result<Vec<Vec<c64>>, AnalysisError> {
     let n = system.n();
+    control.expect(speeds.len() as u64);
     speeds
         .par_iter()
         .map(|&w| {
+            control.check()?;
             let mut f = vec![c64::new(0.0, 0.0); n];
             for u in unbalances {
                 f[u.dof] += c64::from_polar(u.amount * w * w, u.phase);
@@ -81,6 +85,7 @@ pub fn unbalance_response(
                     (0..n).map(|i| z[(i, 0)]).collect()
                 }
             };
+            control.advance(1);
             Ok(out.iter().map(|&d| q[d]).collect())
         })
         .collect()

@@ -407,6 +407,10 @@ pub struct StabilityResponse {
     pub frequency: Option<f64>,
     /// `[start, stop]` searched.
     pub range: [f64; 2],
+    /// The grid searched, rad/s.
+    pub speeds: Vec<f64>,
+    /// Largest decay rate of all poles at each grid speed, 1/s.
+    pub max_decay_rate: Vec<f64>,
 }
 
 /// `GET /healthz`, `GET /readyz`.
@@ -726,4 +730,55 @@ pub struct UnbalanceResponseResponse {
     pub nodes: Vec<NodeUnbalance>,
     /// How the damping model treats synchronous whirl.
     pub note: String,
+}
+
+/// An analysis a job can run: the synchronous endpoint of the same name.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, ToSchema, PartialEq, Eq)]
+#[serde(rename_all = "kebab-case")]
+pub enum AnalysisName {
+    Modal,
+    Campbell,
+    Stability,
+    Damping,
+    TimeResponse,
+    UnbalanceResponse,
+}
+
+/// Body of `POST /v1/jobs`.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct JobRequest {
+    pub analysis: AnalysisName,
+    /// The body the synchronous endpoint `POST /v1/<analysis>` takes.
+    #[schema(value_type = Object)]
+    pub input: Value,
+}
+
+/// State of a job.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, ToSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum JobStatus {
+    Queued,
+    Running,
+    Succeeded,
+    Failed,
+    Cancelled,
+}
+
+/// A job's status.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct JobInfo {
+    pub id: String,
+    pub analysis: String,
+    pub status: JobStatus,
+    /// Fraction of the work done, 0 to 1 (speeds swept, samples computed).
+    pub progress: f64,
+    pub created_at: String,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub started_at: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub finished_at: Option<String>,
+    /// Why the job failed or was cancelled.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub error: Option<Problem>,
 }

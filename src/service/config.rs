@@ -25,6 +25,14 @@ pub struct Config {
     pub max_samples: usize,
     /// `WHIRL_MAX_STEPS`: most steps of the implicit integrator (default 500 000).
     pub max_steps: usize,
+    /// `WHIRL_JOB_RETENTION`: seconds a finished job is kept (default 3600).
+    pub job_retention: u64,
+    /// `WHIRL_MAX_FINISHED_JOBS`: most finished jobs kept (default 1000).
+    pub max_finished_jobs: usize,
+    /// `WHIRL_JOB_TIME_LIMIT`: seconds a job may run before it is stopped (default 600).
+    pub job_time_limit: u64,
+    /// `WHIRL_SHUTDOWN_GRACE`: seconds running jobs get to finish on SIGTERM (default 30).
+    pub shutdown_grace: u64,
     /// `WHIRL_LOG_FORMAT`: `text` (default) or `json`.
     pub log_json: bool,
 }
@@ -42,6 +50,10 @@ impl Default for Config {
             max_states: 1500,
             max_samples: 2_000_000,
             max_steps: 500_000,
+            job_retention: 3600,
+            max_finished_jobs: 1000,
+            job_time_limit: 600,
+            shutdown_grace: 30,
             log_json: false,
         }
     }
@@ -97,6 +109,10 @@ impl Config {
             max_states: num(&get, "WHIRL_MAX_STATES", d.max_states, 2)?,
             max_samples: num(&get, "WHIRL_MAX_SAMPLES", d.max_samples, 2)?,
             max_steps: num(&get, "WHIRL_MAX_STEPS", d.max_steps, 10)?,
+            job_retention: num(&get, "WHIRL_JOB_RETENTION", d.job_retention, 1)?,
+            max_finished_jobs: num(&get, "WHIRL_MAX_FINISHED_JOBS", d.max_finished_jobs, 1)?,
+            job_time_limit: num(&get, "WHIRL_JOB_TIME_LIMIT", d.job_time_limit, 1)?,
+            shutdown_grace: num(&get, "WHIRL_SHUTDOWN_GRACE", d.shutdown_grace, 0)?,
             log_json,
         })
     }

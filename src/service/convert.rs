@@ -99,13 +99,19 @@ pub fn campbell(r: &CampbellResult) -> api::CampbellResponse {
     }
 }
 
-pub fn stability(t: Option<&Threshold>, range: [f64; 2]) -> api::StabilityResponse {
+pub fn stability(
+    t: Option<&Threshold>,
+    speeds: &[f64],
+    max_decay_rate: Vec<f64>,
+) -> api::StabilityResponse {
     api::StabilityResponse {
+        speeds: speeds.to_vec(),
+        max_decay_rate,
         threshold: t.map(|t| t.speed),
         mode: t.map(|t| t.mode),
         whirl: t.map(|t| whirl(t.pole.whirl)),
         frequency: t.map(|t| t.pole.frequency()),
-        range,
+        range: [speeds[0], speeds[speeds.len() - 1]],
     }
 }
 

@@ -21,8 +21,16 @@ pub enum ApiError {
     Busy,
     /// 404.
     NotFound(String),
+    /// 406: no acceptable representation.
+    NotAcceptable(String),
     /// 500: a bug; the server keeps serving.
     Internal(String),
+    /// The analysis was stopped (a job's cancel, time limit or shutdown): the job records why.
+    Cancelled,
+    /// Why a job was stopped.
+    Stopped(String),
+    /// 409: the resource is not in a state for this request.
+    Conflict(String),
 }
 
 impl From<Invalid> for ApiError {
@@ -33,7 +41,10 @@ impl From<Invalid> for ApiError {
 
 impl From<AnalysisError> for ApiError {
     fn from(e: AnalysisError) -> Self {
-        ApiError::Unsolvable(e.to_string())
+        match e {
+            AnalysisError::Cancelled => ApiError::Cancelled,
+            e => ApiError::Unsolvable(e.to_string()),
+        }
     }
 }
 
@@ -48,7 +59,11 @@ impl ApiError {
             ApiError::TooLarge(_) => StatusCode::PAYLOAD_TOO_LARGE,
             ApiError::Busy => StatusCode::SERVICE_UNAVAILABLE,
             ApiError::NotFound(_) => StatusCode::NOT_FOUND,
+            ApiError::NotAcceptable(_) => StatusCode::NOT_ACCEPTABLE,
             ApiError::Internal(_) => StatusCode::INTERNAL_SERVER_ERROR,
+            ApiError::Cancelled | ApiError::Stopped(_) | ApiError::Conflict(_) => {
+                StatusCode::CONFLICT
+            }
         }
     }
 
@@ -88,7 +103,16 @@ impl ApiError {
                 vec![],
             ),
             ApiError::NotFound(d) => ("not-found", "Not found", d.clone(), vec![]),
+            ApiError::NotAcceptable(d) => ("not-acceptable", "Not acceptable", d.clone(), vec![]),
             ApiError::Internal(d) => ("internal", "Internal error", d.clone(), vec![]),
+            ApiError::Cancelled => (
+                "cancelled",
+                "Cancelled",
+                "the analysis was cancelled".into(),
+                vec![],
+            ),
+            ApiError::Stopped(d) => ("stopped", "Job stopped", d.clone(), vec![]),
+            ApiError::Conflict(d) => ("conflict", "Conflict", d.clone(), vec![]),
         };
         Problem {
             kind: format!("/problems/{kind}"),

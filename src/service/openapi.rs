@@ -14,7 +14,8 @@ Errors are application/problem+json with the path of every bad field.",
     ),
     tags(
         (name = "analyses", description = "Eigenvalue analyses of a rotor model"),
-        (name = "operations", description = "Health and readiness")
+        (name = "jobs", description = "Asynchronous analyses: submit, poll, fetch, cancel"),
+        (name = "operations", description = "Health, readiness and metrics")
     )
 )]
 struct ApiDoc;

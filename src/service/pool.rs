@@ -19,8 +19,9 @@ pub struct WorkerPool {
     queue: usize,
 }
 
-/// Decrements the in-flight count however the request ends (even if the client goes away).
-struct Admission(Arc<AtomicUsize>);
+/// A place in the pool: held from admission until the analysis ends, however it ends (even if
+/// the client goes away), so an admitted analysis is never dropped for lack of room.
+pub struct Admission(Arc<AtomicUsize>);
 
 impl Drop for Admission {
     fn drop(&mut self) {
@@ -48,23 +49,49 @@ impl WorkerPool {
         self.in_flight.load(Ordering::SeqCst)
     }
 
+    /// Takes a place, or `Busy` when workers and queue are full.
+    pub fn admit(&self) -> Result<Admission, ApiError> {
+        let before = self.in_flight.fetch_add(1, Ordering::SeqCst);
+        let admission = Admission(self.in_flight.clone());
+        if before >= self.workers + self.queue {
+            return Err(ApiError::Busy);
+        }
+        Ok(admission)
+    }
+
+    /// Analyses running now.
+    pub fn running(&self) -> usize {
+        self.workers - self.permits.available_permits()
+    }
+
     /// Runs `f` on a blocking thread once a worker is free.
     pub async fn run<T, F>(&self, f: F) -> Result<T, ApiError>
     where
         T: Send + 'static,
         F: FnOnce() -> Result<T, ApiError> + Send + 'static,
     {
-        let before = self.in_flight.fetch_add(1, Ordering::SeqCst);
-        let _admission = Admission(self.in_flight.clone());
-        if before >= self.workers + self.queue {
-            return Err(ApiError::Busy);
-        }
+        let admission = self.admit()?;
+        self.run_admitted(admission, || {}, f).await
+    }
+
+    /// Runs an admitted analysis: waits for a worker, calls `started` when it has one, runs `f`.
+    pub async fn run_admitted<T, F>(
+        &self,
+        _admission: Admission,
+        started: impl FnOnce(),
+        f: F,
+    ) -> Result<T, ApiError>
+    where
+        T: Send + 'static,
+        F: FnOnce() -> Result<T, ApiError> + Send + 'static,
+    {
         let permit = self
             .permits
             .clone()
             .acquire_owned()
             .await
             .map_err(|_| ApiError::Internal("the worker pool is closed".into()))?;
+        started();
         tokio::task::spawn_blocking(move || {
             let _permit = permit;
             f()

@@ -1,13 +1,18 @@
 //! Handlers: validate on the runtime, compute on the worker pool, convert to wire types.
 
 use axum::Json;
+use axum::extract::Path;
 use axum::extract::State;
-use axum::http::{StatusCode, Uri};
+use axum::http::{HeaderMap, HeaderValue, StatusCode, Uri, header};
+use axum::response::{IntoResponse, Response};
+use serde_json::Value;
 
 use super::AppState;
 use super::convert;
 use super::error::ApiError;
+use super::jobs;
 use super::json::ApiJson;
+use super::task::{Output, Task, negotiate, render, respond};
 use crate::analysis;
 use crate::analysis::time::{SpeedLaw, TimeSpec};
 use crate::analysis::unbalance::SteadyUnbalance;
@@ -16,9 +21,10 @@ use crate::damping::{DampedModel, DampingError};
 use crate::fem::modal::ModalError;
 use crate::model::Invalid;
 use crate::model::api::{
-    CampbellResponse, DampingInput, DampingMatricesRequest, DampingMatricesResponse, MatrixForm,
-    ModalRequest, ModalResponse, Problem, RotorInput, StabilityResponse, Status, SweepRequest,
-    TimeResponseRequest, TimeResponseResponse, UnbalanceResponseRequest, UnbalanceResponseResponse,
+    AnalysisName, CampbellResponse, DampingInput, DampingMatricesRequest, DampingMatricesResponse,
+    JobInfo, JobRequest, JobStatus, MatrixForm, ModalRequest, ModalResponse, Problem, RotorInput,
+    StabilityResponse, Status, SweepRequest, TimeResponseRequest, TimeResponseResponse,
+    UnbalanceResponseRequest, UnbalanceResponseResponse,
 };
 use crate::model::damping::DampingModel;
 use crate::model::error::{finite, non_negative, positive};
@@ -66,27 +72,35 @@ pub async fn readyz(State(st): State<AppState>) -> (StatusCode, Json<Status>) {
 /// branches. Also the undamped nonrotating natural frequencies.
 #[utoipa::path(post, path = "/v1/modal", tag = "analyses", request_body = ModalRequest,
     responses(
-        (status = 200, description = "Poles", body = ModalResponse),
+        (status = 200, description = "Poles (JSON; the table or the plot by Accept)",
+         content((ModalResponse = "application/json"), (String = "text/csv"))),
+        (status = 406, description = "No acceptable format", body = Problem, content_type = "application/problem+json"),
         (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
         (status = 413, description = "Body too large", body = Problem, content_type = "application/problem+json"),
         (status = 422, description = "Invalid model", body = Problem, content_type = "application/problem+json"),
         (status = 503, description = "Queue full; see Retry-After", body = Problem, content_type = "application/problem+json")))]
 pub async fn modal(
     State(st): State<AppState>,
+    headers: HeaderMap,
     ApiJson(req): ApiJson<ModalRequest>,
-) -> Result<Json<ModalResponse>, ApiError> {
+) -> Result<Response, ApiError> {
+    let format = negotiate(&headers)?;
+    let task = prepare_modal(&st, req)?;
+    respond(&st, "modal", task, format).await
+}
+
+/// Validates a `modal` request into a task.
+pub fn prepare_modal(st: &AppState, req: ModalRequest) -> Result<Task, ApiError> {
     let mut bad = Invalid::default();
     let speed = bad.check("speed", non_negative(req.speed));
-    let parsed = validate_model(&st, &req.rotor, &req.damping, bad)?;
+    let parsed = validate_model(st, &req.rotor, &req.damping, bad)?;
     let speed = speed.expect("validated");
     let max_states = st.config.max_states;
-    st.pool
-        .run(move || {
-            let (system, model) = build(&parsed, max_states)?;
-            let r = analysis::modal::modal(&system, &model, speed)?;
-            Ok(Json(convert::modal(&r)))
-        })
-        .await
+    Ok(Task::new(move |_| {
+        let (system, model) = build(&parsed, max_states)?;
+        let r = analysis::modal::modal(&system, &model, speed)?;
+        Ok(Output::Modal(convert::modal(&r)))
+    }))
 }
 
 /// Campbell diagram and decay-rate plot.
@@ -97,26 +111,34 @@ pub async fn modal(
 /// (hysteretic model near a critical speed) is null.
 #[utoipa::path(post, path = "/v1/campbell", tag = "analyses", request_body = SweepRequest,
     responses(
-        (status = 200, description = "Branches", body = CampbellResponse),
+        (status = 200, description = "Branches (JSON; the table or the plot by Accept)",
+         content((CampbellResponse = "application/json"), (String = "text/csv"), (String = "image/svg+xml"))),
+        (status = 406, description = "No acceptable format", body = Problem, content_type = "application/problem+json"),
         (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
         (status = 413, description = "Body too large", body = Problem, content_type = "application/problem+json"),
         (status = 422, description = "Invalid model", body = Problem, content_type = "application/problem+json"),
         (status = 503, description = "Queue full; see Retry-After", body = Problem, content_type = "application/problem+json")))]
 pub async fn campbell(
     State(st): State<AppState>,
+    headers: HeaderMap,
     ApiJson(req): ApiJson<SweepRequest>,
-) -> Result<Json<CampbellResponse>, ApiError> {
-    let (parsed, grid) = validate_sweep(&st, &req)?;
+) -> Result<Response, ApiError> {
+    let format = negotiate(&headers)?;
+    let task = prepare_campbell(&st, req)?;
+    respond(&st, "campbell", task, format).await
+}
+
+/// Validates a `campbell` request into a task.
+pub fn prepare_campbell(st: &AppState, req: SweepRequest) -> Result<Task, ApiError> {
+    let (parsed, grid) = validate_sweep(st, &req)?;
     let max_states = st.config.max_states;
     let max_frequency = req.max_frequency.unwrap_or(f64::INFINITY);
-    st.pool
-        .run(move || {
-            let (_, model) = build(&parsed, max_states)?;
-            let mut r = analysis::campbell::campbell(&model, grid.as_slice())?;
-            r.keep_below(max_frequency);
-            Ok(Json(convert::campbell(&r)))
-        })
-        .await
+    Ok(Task::new(move |control| {
+        let (_, model) = build(&parsed, max_states)?;
+        let mut r = analysis::campbell::campbell(&model, grid.as_slice(), control)?;
+        r.keep_below(max_frequency);
+        Ok(Output::Campbell(convert::campbell(&r)))
+    }))
 }
 
 /// Threshold of instability.
@@ -127,27 +149,36 @@ pub async fn campbell(
 /// and equals the range's start when it is already unstable there.
 #[utoipa::path(post, path = "/v1/stability", tag = "analyses", request_body = SweepRequest,
     responses(
-        (status = 200, description = "Threshold", body = StabilityResponse),
+        (status = 200, description = "Threshold (JSON; the table or the plot by Accept)",
+         content((StabilityResponse = "application/json"), (String = "text/csv"), (String = "image/svg+xml"))),
+        (status = 406, description = "No acceptable format", body = Problem, content_type = "application/problem+json"),
         (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
         (status = 413, description = "Body too large", body = Problem, content_type = "application/problem+json"),
         (status = 422, description = "Invalid model", body = Problem, content_type = "application/problem+json"),
         (status = 503, description = "Queue full; see Retry-After", body = Problem, content_type = "application/problem+json")))]
 pub async fn stability(
     State(st): State<AppState>,
+    headers: HeaderMap,
     ApiJson(req): ApiJson<SweepRequest>,
-) -> Result<Json<StabilityResponse>, ApiError> {
-    let (parsed, grid) = validate_sweep(&st, &req)?;
+) -> Result<Response, ApiError> {
+    let format = negotiate(&headers)?;
+    let task = prepare_stability(&st, req)?;
+    respond(&st, "stability", task, format).await
+}
+
+/// Validates a `stability` request into a task.
+pub fn prepare_stability(st: &AppState, req: SweepRequest) -> Result<Task, ApiError> {
+    let (parsed, grid) = validate_sweep(st, &req)?;
     let max_states = st.config.max_states;
-    st.pool
-        .run(move || {
-            let (_, model) = build(&parsed, max_states)?;
-            let t = analysis::stability::stability(&model, grid.as_slice())?;
-            Ok(Json(convert::stability(
-                t.as_ref(),
-                [grid.first(), grid.last()],
-            )))
-        })
-        .await
+    Ok(Task::new(move |control| {
+        let (_, model) = build(&parsed, max_states)?;
+        let (t, curve) = analysis::stability::stability_curve(&model, grid.as_slice(), control)?;
+        Ok(Output::Stability(convert::stability(
+            t.as_ref(),
+            grid.as_slice(),
+            curve,
+        )))
+    }))
 }
 
 /// Equivalent or nonviscous damping as matrices, for integration elsewhere.
@@ -167,8 +198,19 @@ pub async fn stability(
         (status = 503, description = "Queue full; see Retry-After", body = Problem, content_type = "application/problem+json")))]
 pub async fn damping_matrices(
     State(st): State<AppState>,
+    headers: HeaderMap,
     ApiJson(req): ApiJson<DampingMatricesRequest>,
-) -> Result<Json<DampingMatricesResponse>, ApiError> {
+) -> Result<Response, ApiError> {
+    let format = negotiate(&headers)?;
+    let task = prepare_damping_matrices(&st, req)?;
+    respond(&st, "damping", task, format).await
+}
+
+/// Validates a `damping_matrices` request into a task.
+pub fn prepare_damping_matrices(
+    st: &AppState,
+    req: DampingMatricesRequest,
+) -> Result<Task, ApiError> {
     let mut bad = Invalid::default();
     let fit = req.fit.clone().unwrap_or_default();
     let band = match fit.band {
@@ -214,7 +256,7 @@ pub async fn damping_matrices(
             _ => bad.push("fit.max_deviation", "applies to the nonviscous model only"),
         }
     }
-    let parsed = validate_model(&st, &req.rotor, &req.damping, bad)?;
+    let parsed = validate_model(st, &req.rotor, &req.damping, bad)?;
     if matches!(
         parsed.damping,
         DampingModel::Viscous | DampingModel::Hysteretic
@@ -231,9 +273,9 @@ pub async fn damping_matrices(
     }
     let form = req.form.unwrap_or(MatrixForm::SecondOrder);
     let max_states = st.config.max_states;
-    st.pool
-        .run(move || damping_report(&parsed, form, band, auto, max_states).map(Json))
-        .await
+    Ok(Task::new(move |_| {
+        damping_report(&parsed, form, band, auto, max_states).map(|r| Output::Damping(Box::new(r)))
+    }))
 }
 
 fn damping_report(
@@ -273,15 +315,25 @@ fn damping_report(
 /// harmonic motion only; `nonviscous` is its time-domain model.
 #[utoipa::path(post, path = "/v1/time-response", tag = "analyses", request_body = TimeResponseRequest,
     responses(
-        (status = 200, description = "Displacements of the nodes", body = TimeResponseResponse),
+        (status = 200, description = "Displacements of the nodes (JSON; the table or the plot by Accept)",
+         content((TimeResponseResponse = "application/json"), (String = "text/csv"), (String = "image/svg+xml"))),
+        (status = 406, description = "No acceptable format", body = Problem, content_type = "application/problem+json"),
         (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
         (status = 413, description = "Body too large", body = Problem, content_type = "application/problem+json"),
         (status = 422, description = "Invalid model", body = Problem, content_type = "application/problem+json"),
         (status = 503, description = "Queue full; see Retry-After", body = Problem, content_type = "application/problem+json")))]
 pub async fn time_response(
     State(st): State<AppState>,
+    headers: HeaderMap,
     ApiJson(req): ApiJson<TimeResponseRequest>,
-) -> Result<Json<TimeResponseResponse>, ApiError> {
+) -> Result<Response, ApiError> {
+    let format = negotiate(&headers)?;
+    let task = prepare_time_response(&st, req)?;
+    respond(&st, "time-response", task, format).await
+}
+
+/// Validates a `time_response` request into a task.
+pub fn prepare_time_response(st: &AppState, req: TimeResponseRequest) -> Result<Task, ApiError> {
     let mut bad = Invalid::default();
     if matches!(req.damping, DampingInput::Hysteretic(_)) {
         bad.push(
@@ -318,7 +370,7 @@ pub async fn time_response(
             None
         }
     };
-    let parsed = validate_model(&st, &req.rotor, &req.damping, bad)?;
+    let parsed = validate_model(st, &req.rotor, &req.damping, bad)?;
     let mut bad = Invalid::default();
     let nodes = parsed.rotor.node_count();
     let node = |bad: &mut Invalid, at: String, k: i64| -> Option<usize> {
@@ -391,14 +443,17 @@ pub async fn time_response(
         max_steps: st.config.max_steps,
     };
     let max_states = st.config.max_states;
-    st.pool
-        .run(move || {
-            let (system, model) = build(&parsed, max_states)?;
-            let r = analysis::time::time_response(&system, &model, &spec, false)
-                .map_err(|e| ApiError::Unsolvable(e.to_string()))?;
-            Ok(Json(convert::time_response(&r)))
-        })
-        .await
+    Ok(Task::new(move |control| {
+        let (system, model) = build(&parsed, max_states)?;
+        let r =
+            analysis::time::time_response(&system, &model, &spec, false, control).map_err(|e| {
+                match e {
+                    analysis::time::TimeError::Cancelled => ApiError::Cancelled,
+                    e => ApiError::Unsolvable(e.to_string()),
+                }
+            })?;
+        Ok(Output::Time(convert::time_response(&r)))
+    }))
 }
 
 /// Steady synchronous response to unbalance against speed.
@@ -410,15 +465,28 @@ pub async fn time_response(
 /// answer's `note` says so.
 #[utoipa::path(post, path = "/v1/unbalance-response", tag = "analyses", request_body = UnbalanceResponseRequest,
     responses(
-        (status = 200, description = "Amplitude and phase per node and speed", body = UnbalanceResponseResponse),
+        (status = 200, description = "Amplitude and phase per node and speed (JSON; the table or the plot by Accept)",
+         content((UnbalanceResponseResponse = "application/json"), (String = "text/csv"), (String = "image/svg+xml"))),
+        (status = 406, description = "No acceptable format", body = Problem, content_type = "application/problem+json"),
         (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
         (status = 413, description = "Body too large", body = Problem, content_type = "application/problem+json"),
         (status = 422, description = "Invalid model", body = Problem, content_type = "application/problem+json"),
         (status = 503, description = "Queue full; see Retry-After", body = Problem, content_type = "application/problem+json")))]
 pub async fn unbalance_response(
     State(st): State<AppState>,
+    headers: HeaderMap,
     ApiJson(req): ApiJson<UnbalanceResponseRequest>,
-) -> Result<Json<UnbalanceResponseResponse>, ApiError> {
+) -> Result<Response, ApiError> {
+    let format = negotiate(&headers)?;
+    let task = prepare_unbalance_response(&st, req)?;
+    respond(&st, "unbalance-response", task, format).await
+}
+
+/// Validates a `unbalance_response` request into a task.
+pub fn prepare_unbalance_response(
+    st: &AppState,
+    req: UnbalanceResponseRequest,
+) -> Result<Task, ApiError> {
     let mut bad = Invalid::default();
     let grid = match SpeedGrid::parse(&req.speeds, st.config.max_speeds) {
         Ok(g) => Some(g),
@@ -430,7 +498,7 @@ pub async fn unbalance_response(
     if req.unbalances.is_empty() {
         bad.push("unbalances", "needs at least one unbalance");
     }
-    let parsed = validate_model(&st, &req.rotor, &req.damping, bad)?;
+    let parsed = validate_model(st, &req.rotor, &req.damping, bad)?;
     let mut bad = Invalid::default();
     let nodes = parsed.rotor.node_count();
     let node = |bad: &mut Invalid, at: String, k: i64| -> Option<usize> {
@@ -461,34 +529,33 @@ pub async fn unbalance_response(
     let grid = grid.expect("validated");
     let max_states = st.config.max_states;
     let model_name = parsed.damping.name();
-    st.pool
-        .run(move || {
-            let (system, model) = build(&parsed, max_states)?;
-            let dof = |n: usize| analysis::time::translation(&system, n);
-            let unbalances: Vec<SteadyUnbalance> = unb
-                .iter()
-                .map(|&(n, amount, phase)| SteadyUnbalance {
-                    dof: dof(n),
-                    amount,
-                    phase,
-                })
-                .collect();
-            let dofs: Vec<usize> = out.iter().map(|&n| dof(n)).collect();
-            let q = analysis::unbalance::unbalance_response(
-                &system,
-                &model,
-                grid.as_slice(),
-                &unbalances,
-                &dofs,
-            )?;
-            Ok(Json(convert::unbalance_response(
-                grid.as_slice(),
-                &out,
-                &q,
-                model_name,
-            )))
-        })
-        .await
+    Ok(Task::new(move |control| {
+        let (system, model) = build(&parsed, max_states)?;
+        let dof = |n: usize| analysis::time::translation(&system, n);
+        let unbalances: Vec<SteadyUnbalance> = unb
+            .iter()
+            .map(|&(n, amount, phase)| SteadyUnbalance {
+                dof: dof(n),
+                amount,
+                phase,
+            })
+            .collect();
+        let dofs: Vec<usize> = out.iter().map(|&n| dof(n)).collect();
+        let q = analysis::unbalance::unbalance_response(
+            &system,
+            &model,
+            grid.as_slice(),
+            &unbalances,
+            &dofs,
+            control,
+        )?;
+        Ok(Output::Unbalance(convert::unbalance_response(
+            grid.as_slice(),
+            &out,
+            &q,
+            model_name,
+        )))
+    }))
 }
 
 /// The nodes to report: the requested ones (validated) or all.
@@ -510,6 +577,152 @@ fn report_nodes(
                 .collect()
         }
     }
+}
+
+/// Submit an analysis to run later.
+///
+/// `{"analysis": "campbell", "input": {...}}`: the input is what `POST /v1/<analysis>` takes,
+/// validated now (422 at once). 202 with `Location: /v1/jobs/{id}` when admitted; 503 with
+/// `Retry-After` when the queue is full. An accepted job always runs.
+#[utoipa::path(post, path = "/v1/jobs", tag = "jobs", request_body = JobRequest,
+    responses(
+        (status = 202, description = "Accepted; poll Location", body = JobInfo,
+         headers(("Location" = String, description = "URL of the job"))),
+        (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
+        (status = 413, description = "Body too large", body = Problem, content_type = "application/problem+json"),
+        (status = 422, description = "Invalid input", body = Problem, content_type = "application/problem+json"),
+        (status = 503, description = "Queue full; see Retry-After", body = Problem, content_type = "application/problem+json")))]
+pub async fn submit_job(
+    State(st): State<AppState>,
+    ApiJson(req): ApiJson<JobRequest>,
+) -> Result<Response, ApiError> {
+    fn input<T: serde::de::DeserializeOwned>(v: Value) -> Result<T, ApiError> {
+        let bytes = serde_json::to_vec(&v).map_err(|e| ApiError::Internal(e.to_string()))?;
+        super::json::parse(&bytes).map_err(|e| match e {
+            ApiError::Invalid(mut inv) => {
+                for f in &mut inv.0 {
+                    f.path = if f.path == "(body)" {
+                        "input".into()
+                    } else {
+                        format!("input.{}", f.path)
+                    };
+                }
+                ApiError::Invalid(inv)
+            }
+            other => other,
+        })
+    }
+    let prefix = |e: ApiError| match e {
+        ApiError::Invalid(mut inv) => {
+            for f in &mut inv.0 {
+                if !f.path.starts_with("input") {
+                    f.path = format!("input.{}", f.path);
+                }
+            }
+            ApiError::Invalid(inv)
+        }
+        other => other,
+    };
+    let (name, task) = match req.analysis {
+        AnalysisName::Modal => (
+            "modal",
+            prepare_modal(&st, input(req.input)?).map_err(prefix)?,
+        ),
+        AnalysisName::Campbell => (
+            "campbell",
+            prepare_campbell(&st, input(req.input)?).map_err(prefix)?,
+        ),
+        AnalysisName::Stability => (
+            "stability",
+            prepare_stability(&st, input(req.input)?).map_err(prefix)?,
+        ),
+        AnalysisName::Damping => (
+            "damping",
+            prepare_damping_matrices(&st, input(req.input)?).map_err(prefix)?,
+        ),
+        AnalysisName::TimeResponse => (
+            "time-response",
+            prepare_time_response(&st, input(req.input)?).map_err(prefix)?,
+        ),
+        AnalysisName::UnbalanceResponse => (
+            "unbalance-response",
+            prepare_unbalance_response(&st, input(req.input)?).map_err(prefix)?,
+        ),
+    };
+    let info = jobs::submit(&st, name, task)?;
+    let location = format!("/v1/jobs/{}", info.id);
+    let mut resp = (StatusCode::ACCEPTED, Json(info)).into_response();
+    if let Ok(v) = HeaderValue::from_str(&location) {
+        resp.headers_mut().insert(header::LOCATION, v);
+    }
+    Ok(resp)
+}
+
+/// A job's status and progress.
+#[utoipa::path(get, path = "/v1/jobs/{id}", tag = "jobs",
+    params(("id" = String, Path, description = "Job id")),
+    responses(
+        (status = 200, description = "Status", body = JobInfo),
+        (status = 404, description = "Unknown or forgotten job", body = Problem, content_type = "application/problem+json")))]
+pub async fn get_job(
+    State(st): State<AppState>,
+    Path(id): Path<String>,
+) -> Result<Json<JobInfo>, ApiError> {
+    st.jobs.get(&id).map(Json)
+}
+
+/// A succeeded job's result: the body its synchronous endpoint returns (JSON, CSV or SVG by
+/// `Accept`); 409 before it has succeeded.
+#[utoipa::path(get, path = "/v1/jobs/{id}/result", tag = "jobs",
+    params(("id" = String, Path, description = "Job id")),
+    responses(
+        (status = 200, description = "The analysis result",
+         content((Object = "application/json"), (String = "text/csv"), (String = "image/svg+xml"))),
+        (status = 404, description = "Unknown or forgotten job", body = Problem, content_type = "application/problem+json"),
+        (status = 406, description = "Format not available", body = Problem, content_type = "application/problem+json"),
+        (status = 409, description = "Not succeeded (yet)", body = Problem, content_type = "application/problem+json")))]
+pub async fn job_result(
+    State(st): State<AppState>,
+    headers: HeaderMap,
+    Path(id): Path<String>,
+) -> Result<Response, ApiError> {
+    let formats = negotiate(&headers)?;
+    let out = st.jobs.result(&id)?;
+    render(&out, &formats)
+}
+
+/// Cancel a job: a queued one at once (200, `cancelled`), a running one within a second
+/// (202, still `running` until it stops); 409 if it has finished.
+#[utoipa::path(delete, path = "/v1/jobs/{id}", tag = "jobs",
+    params(("id" = String, Path, description = "Job id")),
+    responses(
+        (status = 200, description = "Cancelled", body = JobInfo),
+        (status = 202, description = "Cancellation requested", body = JobInfo),
+        (status = 404, description = "Unknown or forgotten job", body = Problem, content_type = "application/problem+json"),
+        (status = 409, description = "Already finished", body = Problem, content_type = "application/problem+json")))]
+pub async fn cancel_job(
+    State(st): State<AppState>,
+    Path(id): Path<String>,
+) -> Result<Response, ApiError> {
+    let info = st.jobs.cancel(&id, "cancelled by the client")?;
+    let status = if info.status == JobStatus::Cancelled {
+        StatusCode::OK
+    } else {
+        StatusCode::ACCEPTED
+    };
+    Ok((status, Json(info)).into_response())
+}
+
+/// Prometheus metrics.
+#[utoipa::path(get, path = "/metrics", tag = "operations",
+    responses((status = 200, description = "Prometheus text format", body = String, content_type = "text/plain")))]
+pub async fn metrics(State(st): State<AppState>) -> Response {
+    let mut resp = super::metrics::render(&st).into_response();
+    resp.headers_mut().insert(
+        header::CONTENT_TYPE,
+        HeaderValue::from_static("text/plain; version=0.0.4; charset=utf-8"),
+    );
+    resp
 }
 
 /// 404 for any other path.

@@ -9,6 +9,7 @@
 //! at resonance. The results are sampled at the output times; no time stepping at all.
 
 use super::{Forcing, Method, TimeError, TimeResult, TimeSpec, rows};
+use crate::analysis::control::Control;
 use crate::damping::state::StateModel;
 use crate::linalg::{self, CMat, LinalgError, c64};
 
@@ -46,6 +47,7 @@ pub fn solve(
     forcing: &Forcing,
     spec: &TimeSpec,
     out: &[usize],
+    control: &Control,
 ) -> Result<TimeResult, TimeError> {
     let e = linalg::eigen(&state.at(omega))?;
     let size = state.size();
@@ -86,6 +88,10 @@ pub fn solve(
     let mut xi = vec![c64::new(0.0, 0.0); size];
     let iw = c64::new(0.0, omega);
     for (ti, &t) in times.iter().enumerate() {
+        if ti.is_multiple_of(64) {
+            control.check()?;
+            control.advance(64.min((times.len() - ti) as u64));
+        }
         for (k, xk) in xi.iter_mut().enumerate() {
             let l = lambda[k];
             let mut acc = c64::new(0.0, 0.0);

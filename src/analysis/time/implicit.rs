@@ -12,6 +12,7 @@
 //! stops converging.
 
 use super::{Forcing, Method, TimeError, TimeResult, TimeSpec, rows};
+use crate::analysis::control::Control;
 use crate::damping::state::StateModel;
 use crate::linalg::{CMat, ComplexLu, c64};
 
@@ -114,6 +115,7 @@ pub fn solve(
     forcing: &Forcing,
     spec: &TimeSpec,
     out: &[usize],
+    control: &Control,
 ) -> Result<TimeResult, TimeError> {
     let size = state.size();
     let times = spec.output_times();
@@ -136,6 +138,9 @@ pub fn solve(
     while t < spec.duration * (1.0 - 1e-14) {
         if steps >= spec.max_steps {
             return Err(TimeError::TooManySteps(spec.max_steps));
+        }
+        if steps.is_multiple_of(64) {
+            control.check()?;
         }
         while next_break < breaks.len() && breaks[next_break] <= t * (1.0 + 1e-14) {
             next_break += 1;
@@ -204,6 +209,7 @@ pub fn solve(
                         + f1[row] * (h11 * step);
                 }
                 next_out += 1;
+                control.advance(1);
             }
             t = t1;
             z = z1;

@@ -15,6 +15,7 @@
 pub mod exact;
 pub mod implicit;
 
+use super::control::{Cancelled, Control};
 use crate::damping::state::StateModel;
 use crate::damping::{DampedModel, ModelKind};
 use crate::linalg::{self, CMat, LinalgError, c64};
@@ -113,6 +114,7 @@ pub enum TimeError {
     TooManySteps(usize),
     /// The step size fell below round-off.
     StepTooSmall(f64),
+    Cancelled,
 }
 
 impl std::fmt::Display for TimeError {
@@ -130,7 +132,14 @@ impl std::fmt::Display for TimeError {
                  duration or loosen the tolerance"
             ),
             Self::StepTooSmall(t) => write!(f, "the step size fell below round-off at t = {t} s"),
+            Self::Cancelled => write!(f, "cancelled"),
         }
+    }
+}
+
+impl From<Cancelled> for TimeError {
+    fn from(_: Cancelled) -> Self {
+        Self::Cancelled
     }
 }
 
@@ -242,23 +251,29 @@ pub fn translation(system: &RotorSystem, node: usize) -> usize {
 }
 
 /// Time response of `model` (exact at constant speed unless `implicit` is forced).
+/// Progress is counted in output samples; the exact method checks for cancellation between
+/// samples, the implicit one every few steps.
 pub fn time_response(
     system: &RotorSystem,
     model: &DampedModel,
     spec: &TimeSpec,
     force_implicit: bool,
+    control: &Control,
 ) -> Result<TimeResult, TimeError> {
+    control.expect(spec.output_times().len() as u64);
     let ModelKind::Linear(state) = &model.kind else {
         return Err(TimeError::Hysteretic);
     };
     let forcing = Forcing::new(system, spec, state.size())?;
     let out: Vec<usize> = spec.nodes.iter().map(|&n| translation(system, n)).collect();
-    if let (Some(w), false) = (spec.speed.constant(), force_implicit)
-        && let Ok(r) = exact::solve(state, w, &forcing, spec, &out)
-    {
-        return Ok(r);
+    if let (Some(w), false) = (spec.speed.constant(), force_implicit) {
+        match exact::solve(state, w, &forcing, spec, &out, control) {
+            Ok(r) => return Ok(r),
+            Err(TimeError::Cancelled) => return Err(TimeError::Cancelled),
+            Err(_) => {} // a nearly defective state matrix: integrate instead
+        }
     }
-    implicit::solve(state, &forcing, spec, &out)
+    implicit::solve(state, &forcing, spec, &out, control)
 }
 
 /// Displacement rows of the reported degrees of freedom in the state.

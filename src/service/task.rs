@@ -1,0 +1,249 @@
+//! A validated request ready to run, its output, and how the output is rendered: JSON by
+//! default, `text/csv` (the table) or `image/svg+xml` (the plot) on request through `Accept`.
+
+use axum::http::{HeaderMap, HeaderValue, StatusCode, header};
+use axum::response::{IntoResponse, Response};
+use serde::Serialize;
+
+use super::AppState;
+use super::error::ApiError;
+use super::plot;
+use crate::analysis::control::Control;
+use crate::model::api::{
+    CampbellResponse, DampingMatricesResponse, ModalResponse, StabilityResponse,
+    TimeResponseResponse, UnbalanceResponseResponse,
+};
+
+/// The result of an analysis, as its endpoint returns it.
+#[derive(Debug, Clone, Serialize)]
+#[serde(untagged)]
+pub enum Output {
+    Modal(ModalResponse),
+    Campbell(CampbellResponse),
+    Stability(StabilityResponse),
+    Damping(Box<DampingMatricesResponse>),
+    Time(TimeResponseResponse),
+    Unbalance(UnbalanceResponseResponse),
+}
+
+type Work = Box<dyn FnOnce(&Control) -> Result<Output, ApiError> + Send>;
+
+/// A validated analysis, to run on a worker.
+pub struct Task(Work);
+
+impl Task {
+    pub fn new(f: impl FnOnce(&Control) -> Result<Output, ApiError> + Send + 'static) -> Self {
+        Task(Box::new(f))
+    }
+
+    pub fn run(self, control: &Control) -> Result<Output, ApiError> {
+        (self.0)(control)
+    }
+}
+
+/// A representation of a result.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    Json,
+    Csv,
+    Svg,
+}
+
+impl Format {
+    fn media(self) -> &'static str {
+        match self {
+            Format::Json => "application/json",
+            Format::Csv => "text/csv",
+            Format::Svg => "image/svg+xml",
+        }
+    }
+}
+
+/// The formats acceptable to the client, best first (`Accept`, with q-values; none: JSON).
+pub fn negotiate(headers: &HeaderMap) -> Result<Vec<Format>, ApiError> {
+    let Some(accept) = headers.get(header::ACCEPT).and_then(|v| v.to_str().ok()) else {
+        return Ok(vec![Format::Json]);
+    };
+    let mut ranked: Vec<(f64, usize, Format)> = vec![];
+    for (i, item) in accept.split(',').enumerate() {
+        let mut parts = item.split(';');
+        let media = parts.next().unwrap_or("").trim().to_ascii_lowercase();
+        let q = parts
+            .filter_map(|p| p.trim().strip_prefix("q="))
+            .find_map(|v| v.trim().parse::<f64>().ok())
+            .unwrap_or(1.0);
+        if q <= 0.0 {
+            continue;
+        }
+        let formats: &[Format] = match media.as_str() {
+            "application/json" | "application/*" | "*/*" | "application/problem+json" => {
+                &[Format::Json]
+            }
+            "text/csv" => &[Format::Csv],
+            "text/*" => &[Format::Csv],
+            "image/svg+xml" | "image/*" => &[Format::Svg],
+            _ => &[],
+        };
+        ranked.extend(formats.iter().map(|f| (q, i, *f)));
+    }
+    ranked.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+    let out: Vec<Format> = ranked.into_iter().map(|r| r.2).collect();
+    if out.is_empty() {
+        return Err(ApiError::NotAcceptable(
+            "this API answers application/json, text/csv or image/svg+xml".into(),
+        ));
+    }
+    Ok(out)
+}
+
+/// Runs a task on the worker pool and renders its output.
+pub async fn respond(
+    st: &AppState,
+    analysis: &str,
+    task: Task,
+    formats: Vec<Format>,
+) -> Result<Response, ApiError> {
+    let t0 = std::time::Instant::now();
+    let out = st.pool.run(move || task.run(&Control::default())).await;
+    st.metrics.observe_analysis(analysis, t0.elapsed());
+    render(&out?, &formats)
+}
+
+/// The output in the first acceptable format it supports (406 if none).
+pub fn render(out: &Output, formats: &[Format]) -> Result<Response, ApiError> {
+    for &f in formats {
+        let body = match f {
+            Format::Json => {
+                Some(serde_json::to_vec(out).map_err(|e| ApiError::Internal(e.to_string()))?)
+            }
+            Format::Csv => csv(out).map(String::into_bytes),
+            Format::Svg => svg(out)?.map(String::into_bytes),
+        };
+        if let Some(body) = body {
+            let mut resp = (StatusCode::OK, body).into_response();
+            resp.headers_mut()
+                .insert(header::CONTENT_TYPE, HeaderValue::from_static(f.media()));
+            return Ok(resp);
+        }
+    }
+    Err(ApiError::NotAcceptable(format!(
+        "this result is available as {}",
+        supported(out).join(", ")
+    )))
+}
+
+fn supported(out: &Output) -> Vec<&'static str> {
+    let mut v = vec!["application/json"];
+    if csv_supported(out) {
+        v.push("text/csv");
+    }
+    if matches!(
+        out,
+        Output::Campbell(_) | Output::Stability(_) | Output::Time(_) | Output::Unbalance(_)
+    ) {
+        v.push("image/svg+xml");
+    }
+    v
+}
+
+fn csv_supported(out: &Output) -> bool {
+    !matches!(out, Output::Damping(_))
+}
+
+fn svg(out: &Output) -> Result<Option<String>, ApiError> {
+    let r = match out {
+        Output::Campbell(c) => plot::campbell(c),
+        Output::Stability(s) => plot::stability(s),
+        Output::Time(t) => plot::time(t),
+        Output::Unbalance(u) => plot::unbalance(u),
+        _ => return Ok(None),
+    };
+    r.map(Some)
+        .map_err(|e| ApiError::Internal(format!("plot: {e}")))
+}
+
+fn num(v: Option<f64>) -> String {
+    v.map(|x| format!("{x}")).unwrap_or_default()
+}
+
+/// The result as a table: one row per speed, time or pole.
+pub fn csv(out: &Output) -> Option<String> {
+    let mut s = String::new();
+    match out {
+        Output::Modal(m) => {
+            s.push_str("decay_rate,frequency,whirl,damping_ratio,log_decrement\n");
+            for p in &m.poles {
+                let whirl = serde_json::to_value(p.whirl).ok()?.as_str()?.to_string();
+                s.push_str(&format!(
+                    "{},{},{whirl},{},{}\n",
+                    p.decay_rate,
+                    p.frequency,
+                    p.damping_ratio,
+                    num(p.log_decrement)
+                ));
+            }
+        }
+        Output::Campbell(c) => {
+            s.push_str("speed");
+            for b in &c.branches {
+                let w = if b.whirl == crate::model::api::Whirl::Forward {
+                    "forward"
+                } else {
+                    "backward"
+                };
+                s.push_str(&format!(
+                    ",mode{}_{w}_frequency,mode{}_{w}_decay_rate",
+                    b.mode, b.mode
+                ));
+            }
+            s.push('\n');
+            for (i, w) in c.speeds.iter().enumerate() {
+                s.push_str(&format!("{w}"));
+                for b in &c.branches {
+                    s.push_str(&format!(
+                        ",{},{}",
+                        num(b.frequency[i]),
+                        num(b.decay_rate[i])
+                    ));
+                }
+                s.push('\n');
+            }
+        }
+        Output::Stability(st) => {
+            s.push_str("speed,max_decay_rate\n");
+            for (w, d) in st.speeds.iter().zip(&st.max_decay_rate) {
+                s.push_str(&format!("{w},{d}\n"));
+            }
+        }
+        Output::Time(t) => {
+            s.push_str("time");
+            for n in &t.nodes {
+                s.push_str(&format!(",node{}_x,node{}_y", n.node, n.node));
+            }
+            s.push('\n');
+            for (i, time) in t.time.iter().enumerate() {
+                s.push_str(&format!("{time}"));
+                for n in &t.nodes {
+                    s.push_str(&format!(",{},{}", n.x[i], n.y[i]));
+                }
+                s.push('\n');
+            }
+        }
+        Output::Unbalance(u) => {
+            s.push_str("speed");
+            for n in &u.nodes {
+                s.push_str(&format!(",node{}_amplitude,node{}_phase", n.node, n.node));
+            }
+            s.push('\n');
+            for (i, w) in u.speeds.iter().enumerate() {
+                s.push_str(&format!("{w}"));
+                for n in &u.nodes {
+                    s.push_str(&format!(",{},{}", n.amplitude[i], n.phase[i]));
+                }
+                s.push('\n');
+            }
+        }
+        Output::Damping(_) => return None,
+    }
+    Some(s)
+}

@@ -1,0 +1,430 @@
+//! The operable service: job lifecycle, cancellation latency, the queue bound under a burst,
+//! time limits, shutdown, plots and tables, metrics and request ids.
+
+use std::time::{Duration, Instant};
+
+use axum::Router;
+use axum::body::Body;
+use axum::http::{Request, StatusCode, header};
+use http_body_util::BodyExt;
+use serde_json::{Value, json};
+use tower::ServiceExt;
+use whirl::service::{Config, app, app_with_state};
+
+async fn call(
+    app: &Router,
+    method: &str,
+    uri: &str,
+    body: Option<Value>,
+    accept: Option<&str>,
+) -> (StatusCode, axum::http::HeaderMap, Vec<u8>) {
+    let mut req = Request::builder()
+        .method(method)
+        .uri(uri)
+        .header(header::CONTENT_TYPE, "application/json");
+    if let Some(a) = accept {
+        req = req.header(header::ACCEPT, a);
+    }
+    let req = req
+        .body(
+            body.map(|b| Body::from(b.to_string()))
+                .unwrap_or_else(Body::empty),
+        )
+        .unwrap();
+    let resp = app.clone().oneshot(req).await.unwrap();
+    let (status, headers) = (resp.status(), resp.headers().clone());
+    (
+        status,
+        headers,
+        resp.into_body()
+            .collect()
+            .await
+            .unwrap()
+            .to_bytes()
+            .to_vec(),
+    )
+}
+
+async fn json_call(
+    app: &Router,
+    method: &str,
+    uri: &str,
+    body: Option<Value>,
+) -> (StatusCode, Value) {
+    let (s, _, b) = call(app, method, uri, body, None).await;
+    (s, serde_json::from_slice(&b).unwrap_or(Value::Null))
+}
+
+fn example(name: &str) -> Value {
+    let path = format!("{}/examples/{name}", env!("CARGO_MANIFEST_DIR"));
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+/// A Campbell sweep of several seconds: the compressor, hysteretic, many speeds.
+fn long_job() -> Value {
+    let mut input = example("compressor-hysteretic.campbell.json");
+    input["speeds"] = json!({"start": 0.0, "stop": 1500.0, "count": 400});
+    json!({"analysis": "campbell", "input": input})
+}
+
+async fn wait_for(app: &Router, id: &str, done: impl Fn(&Value) -> bool, limit: Duration) -> Value {
+    let t0 = Instant::now();
+    loop {
+        let (_, v) = json_call(app, "GET", &format!("/v1/jobs/{id}"), None).await;
+        if done(&v) || t0.elapsed() > limit {
+            return v;
+        }
+        tokio::time::sleep(Duration::from_millis(10)).await;
+    }
+}
+
+fn finished(v: &Value) -> bool {
+    ["succeeded", "failed", "cancelled"].contains(&v["status"].as_str().unwrap_or(""))
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_job_is_submitted_polled_and_fetched() {
+    let app = app(Config::default());
+    let input = example("jeffcott-nvd.campbell.json");
+    let (status, headers, body) = call(
+        &app,
+        "POST",
+        "/v1/jobs",
+        Some(json!({"analysis": "campbell", "input": input})),
+        None,
+    )
+    .await;
+    assert_eq!(status, StatusCode::ACCEPTED);
+    let job: Value = serde_json::from_slice(&body).unwrap();
+    let id = job["id"].as_str().unwrap().to_string();
+    assert_eq!(headers[header::LOCATION], format!("/v1/jobs/{id}").as_str());
+    assert_eq!(job["analysis"], "campbell");
+    let v = wait_for(&app, &id, finished, Duration::from_secs(20)).await;
+    assert_eq!(v["status"], "succeeded", "{v}");
+    assert_eq!(v["progress"], 1.0);
+    assert!(
+        v["created_at"].is_string() && v["started_at"].is_string() && v["finished_at"].is_string()
+    );
+    // The result is the synchronous body.
+    let (_, result) = json_call(&app, "GET", &format!("/v1/jobs/{id}/result"), None).await;
+    let (_, sync) = json_call(&app, "POST", "/v1/campbell", Some(input)).await;
+    assert_eq!(result, sync);
+    // And the table or the plot on request.
+    let (s, h, csv) = call(
+        &app,
+        "GET",
+        &format!("/v1/jobs/{id}/result"),
+        None,
+        Some("text/csv"),
+    )
+    .await;
+    assert_eq!(
+        (s, h[header::CONTENT_TYPE].to_str().unwrap()),
+        (StatusCode::OK, "text/csv")
+    );
+    assert!(
+        String::from_utf8(csv)
+            .unwrap()
+            .starts_with("speed,mode1_forward_frequency")
+    );
+    let (s, _, svg) = call(
+        &app,
+        "GET",
+        &format!("/v1/jobs/{id}/result"),
+        None,
+        Some("image/svg+xml"),
+    )
+    .await;
+    assert_eq!(s, StatusCode::OK);
+    assert!(String::from_utf8(svg).unwrap().contains("<svg"));
+    // Unknown jobs are 404; cancelling a finished one is 409.
+    assert_eq!(
+        json_call(&app, "GET", "/v1/jobs/nope", None).await.0,
+        StatusCode::NOT_FOUND
+    );
+    assert_eq!(
+        json_call(&app, "DELETE", &format!("/v1/jobs/{id}"), None)
+            .await
+            .0,
+        StatusCode::CONFLICT
+    );
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn invalid_job_input_is_refused_at_once_with_the_path() {
+    let app = app(Config::default());
+    let (status, v) = json_call(&app, "POST", "/v1/jobs", Some(json!({"analysis": "modal",
+        "input": {"rotor": {"type": "jeffcott", "mass": -1.0, "stiffness": 1.0}, "damping": {"model": "viscous"}}}))).await;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert_eq!(v["errors"][0]["path"], "input.rotor.mass");
+    let (status, _) = json_call(
+        &app,
+        "POST",
+        "/v1/jobs",
+        Some(json!({"analysis": "everything", "input": {}})),
+    )
+    .await;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_running_job_reports_progress_and_stops_within_a_second_of_cancel() {
+    let app = app(Config::default());
+    let (status, job) = json_call(&app, "POST", "/v1/jobs", Some(long_job())).await;
+    assert_eq!(status, StatusCode::ACCEPTED);
+    let id = job["id"].as_str().unwrap().to_string();
+    // 409 before success.
+    assert_eq!(
+        json_call(&app, "GET", &format!("/v1/jobs/{id}/result"), None)
+            .await
+            .0,
+        StatusCode::CONFLICT
+    );
+    // Progress really advances.
+    let v = wait_for(
+        &app,
+        &id,
+        |v| v["progress"].as_f64().unwrap_or(0.0) > 0.05,
+        Duration::from_secs(30),
+    )
+    .await;
+    let p = v["progress"].as_f64().unwrap();
+    assert!(p > 0.05 && p < 1.0 && v["status"] == "running", "{v}");
+    let t0 = Instant::now();
+    let (status, v) = json_call(&app, "DELETE", &format!("/v1/jobs/{id}"), None).await;
+    assert_eq!(status, StatusCode::ACCEPTED, "{v}");
+    let v = wait_for(&app, &id, finished, Duration::from_secs(5)).await;
+    let latency = t0.elapsed();
+    assert_eq!(v["status"], "cancelled");
+    assert!(
+        latency < Duration::from_secs(1),
+        "stopped after {latency:?}"
+    );
+    assert!(v["error"]["detail"].as_str().unwrap().contains("client"));
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_burst_fills_the_queue_and_nothing_accepted_is_lost() {
+    let app = app(Config {
+        workers: 1,
+        queue: 2,
+        ..Config::default()
+    });
+    let mut accepted = vec![];
+    let mut refused = 0;
+    for _ in 0..8 {
+        let (status, headers, body) = call(&app, "POST", "/v1/jobs", Some(long_job()), None).await;
+        match status {
+            StatusCode::ACCEPTED => accepted.push(
+                serde_json::from_slice::<Value>(&body).unwrap()["id"]
+                    .as_str()
+                    .unwrap()
+                    .to_string(),
+            ),
+            StatusCode::SERVICE_UNAVAILABLE => {
+                assert!(headers.contains_key(header::RETRY_AFTER));
+                refused += 1;
+            }
+            s => panic!("unexpected {s}"),
+        }
+    }
+    assert_eq!((accepted.len(), refused), (3, 5));
+    let (status, _) = json_call(&app, "GET", "/readyz", None).await;
+    assert_eq!(status, StatusCode::SERVICE_UNAVAILABLE);
+    // A queued job is cancelled at once (200); the running one within a second (202).
+    let mut statuses = vec![];
+    for id in &accepted {
+        statuses.push(
+            json_call(&app, "DELETE", &format!("/v1/jobs/{id}"), None)
+                .await
+                .0,
+        );
+    }
+    assert_eq!(statuses.iter().filter(|s| **s == StatusCode::OK).count(), 2);
+    for id in &accepted {
+        let v = wait_for(&app, id, finished, Duration::from_secs(5)).await;
+        assert_eq!(v["status"], "cancelled", "{v}");
+    }
+    assert_eq!(
+        json_call(&app, "GET", "/readyz", None).await.0,
+        StatusCode::OK
+    );
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_job_over_its_time_limit_fails_with_the_reason() {
+    let app = app(Config {
+        job_time_limit: 1,
+        ..Config::default()
+    });
+    let (_, job) = json_call(&app, "POST", "/v1/jobs", Some(long_job())).await;
+    let id = job["id"].as_str().unwrap().to_string();
+    let v = wait_for(&app, &id, finished, Duration::from_secs(5)).await;
+    assert_eq!(v["status"], "failed", "{v}");
+    assert!(
+        v["error"]["detail"]
+            .as_str()
+            .unwrap()
+            .contains("time limit")
+    );
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn shutdown_cancels_what_is_left_with_the_reason() {
+    let (app, state) = app_with_state(Config::default());
+    let (_, job) = json_call(&app, "POST", "/v1/jobs", Some(long_job())).await;
+    let id = job["id"].as_str().unwrap().to_string();
+    wait_for(
+        &app,
+        &id,
+        |v| v["status"] == "running",
+        Duration::from_secs(5),
+    )
+    .await;
+    state.jobs.shutdown(Duration::from_millis(100)).await;
+    let (_, v) = json_call(&app, "GET", &format!("/v1/jobs/{id}"), None).await;
+    assert_eq!(v["status"], "cancelled");
+    assert!(
+        v["error"]["detail"]
+            .as_str()
+            .unwrap()
+            .contains("shutting down")
+    );
+    // And new jobs are refused.
+    assert_eq!(
+        json_call(&app, "POST", "/v1/jobs", Some(long_job()))
+            .await
+            .0,
+        StatusCode::SERVICE_UNAVAILABLE
+    );
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn plots_and_tables_by_accept() {
+    let app = app(Config::default());
+    let body = example("example1-equivalent.campbell.json");
+    let (s, h, svg) = call(
+        &app,
+        "POST",
+        "/v1/campbell",
+        Some(body.clone()),
+        Some("image/svg+xml"),
+    )
+    .await;
+    assert_eq!(
+        (s, h[header::CONTENT_TYPE].to_str().unwrap()),
+        (StatusCode::OK, "image/svg+xml")
+    );
+    let svg = String::from_utf8(svg).unwrap();
+    for text in [
+        "Campbell diagram",
+        "Decay-rate plot",
+        "spin speed [rad/s]",
+        "spin speed [rpm]",
+        "forward",
+        "backward",
+        "threshold 882.7",
+    ] {
+        assert!(svg.contains(text), "{text} missing from the plot");
+    }
+    let (_, _, csv) = call(&app, "POST", "/v1/campbell", Some(body), Some("text/csv")).await;
+    let csv = String::from_utf8(csv).unwrap();
+    let lines: Vec<&str> = csv.lines().collect();
+    assert_eq!(lines.len(), 202, "header and 201 speeds");
+    assert_eq!(lines[0].split(',').count(), 1 + 8 * 2);
+    assert!(lines[1].starts_with("0,"));
+    for (file, endpoint, header_start) in [
+        (
+            "example1-runup-nvd.time-response.json",
+            "time-response",
+            "time,node1_x,node1_y",
+        ),
+        (
+            "compressor-equivalent.stability.json",
+            "stability",
+            "speed,max_decay_rate",
+        ),
+        (
+            "example1-nvd.unbalance-response.json",
+            "unbalance-response",
+            "speed,node1_amplitude",
+        ),
+    ] {
+        let (s, _, csv) = call(
+            &app,
+            "POST",
+            &format!("/v1/{endpoint}"),
+            Some(example(file)),
+            Some("text/csv"),
+        )
+        .await;
+        assert_eq!(s, StatusCode::OK);
+        assert!(
+            String::from_utf8(csv).unwrap().starts_with(header_start),
+            "{endpoint}"
+        );
+        let (s, h, svg) = call(
+            &app,
+            "POST",
+            &format!("/v1/{endpoint}"),
+            Some(example(file)),
+            Some("image/svg+xml"),
+        )
+        .await;
+        assert_eq!(
+            (s, h[header::CONTENT_TYPE].to_str().unwrap()),
+            (StatusCode::OK, "image/svg+xml")
+        );
+        assert!(String::from_utf8(svg).unwrap().contains("<svg"));
+    }
+    // q-values are honoured; an impossible format is 406.
+    let (_, h, _) = call(
+        &app,
+        "POST",
+        "/v1/modal",
+        Some(example("jeffcott-nvd.modal.json")),
+        Some("text/csv;q=0.5, application/json"),
+    )
+    .await;
+    assert_eq!(h[header::CONTENT_TYPE], "application/json");
+    let (s, _, _) = call(
+        &app,
+        "POST",
+        "/v1/modal",
+        Some(example("jeffcott-nvd.modal.json")),
+        Some("image/svg+xml"),
+    )
+    .await;
+    assert_eq!(s, StatusCode::NOT_ACCEPTABLE);
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn metrics_and_request_ids() {
+    let app = app(Config::default());
+    let (_, h, _) = call(
+        &app,
+        "POST",
+        "/v1/modal",
+        Some(example("jeffcott-nvd.modal.json")),
+        None,
+    )
+    .await;
+    assert!(h.contains_key("x-request-id"));
+    let (s, h, text) = call(&app, "GET", "/metrics", None, None).await;
+    assert_eq!(s, StatusCode::OK);
+    assert!(
+        h[header::CONTENT_TYPE]
+            .to_str()
+            .unwrap()
+            .starts_with("text/plain")
+    );
+    let text = String::from_utf8(text).unwrap();
+    for line in [
+        "whirl_http_requests_total{method=\"POST\",route=\"/v1/modal\",status=\"200\"} 1",
+        "whirl_jobs{status=\"queued\"} 0",
+        "whirl_queue_depth 0",
+        "whirl_analysis_duration_seconds_count{analysis=\"modal\"} 1",
+    ] {
+        assert!(text.contains(line), "{line} missing from:\n{text}");
+    }
+}
