@@ -63,6 +63,8 @@ pub enum ReportError {
         states: usize,
         max: usize,
     },
+    /// Numbers beyond floating point range (extreme inputs).
+    NonFinite,
 }
 
 impl std::fmt::Display for ReportError {
@@ -78,6 +80,11 @@ impl std::fmt::Display for ReportError {
                 "not reachable for the {side} dampers with spacing {spacing}: the best is \
                  {best:.4} with {} branches (use a smaller spacing or a narrower band)",
                 BranchSet::MAX_BRANCHES
+            ),
+            Self::NonFinite => write!(
+                f,
+                "the matrices overflow floating point range: the input's magnitudes are too \
+                 extreme (mass, stiffness or damping)"
             ),
             Self::TooLarge { states, max } => write!(
                 f,
@@ -156,8 +163,29 @@ pub fn matrices(
     } else {
         None
     };
+    let aug = augmented(&viscous, &branches);
+    let finite_r = |a: &RMat| (0..a.nrows()).all(|i| (0..a.ncols()).all(|j| a[(i, j)].is_finite()));
+    let finite_c = |a: &CMat| {
+        (0..a.nrows())
+            .all(|i| (0..a.ncols()).all(|j| a[(i, j)].re.is_finite() && a[(i, j)].im.is_finite()))
+    };
+    let ok = [
+        &aug.mass,
+        &aug.gyroscopic,
+        &aug.stiffness,
+        &aug.damping_rotating,
+        &aug.damping_nonrotating,
+    ]
+    .iter()
+    .all(|a| finite_r(a))
+        && state
+            .as_ref()
+            .is_none_or(|(sm, m_inv)| finite_c(sm.a0()) && finite_c(sm.a1()) && finite_c(m_inv));
+    if !ok {
+        return Err(ReportError::NonFinite);
+    }
     Ok(ModelMatrices {
-        augmented: augmented(&viscous, &branches),
+        augmented: aug,
         state,
         equivalent,
         modes: (0..basis.len())

@@ -39,20 +39,26 @@ impl<'de> Deserialize<'de> for RotorInput {
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
 pub struct JeffcottInput {
     /// Mass, kg (> 0).
+    #[schema(exclusive_minimum = 0.0)]
     pub mass: f64,
     /// Shaft stiffness, N/m (> 0).
+    #[schema(exclusive_minimum = 0.0)]
     pub stiffness: f64,
     /// Loss factor of the rotating (shaft material) hysteretic damping, in [0, 1).
     #[serde(default)]
+    #[schema(minimum = 0.0, exclusive_maximum = 1.0)]
     pub loss_factor_rotating: f64,
     /// Loss factor of the nonrotating (support) hysteretic damping, in [0, 1).
     #[serde(default)]
+    #[schema(minimum = 0.0, exclusive_maximum = 1.0)]
     pub loss_factor_nonrotating: f64,
     /// Viscous rotating damping, N s/m (>= 0). Kept under every damping model.
     #[serde(default)]
+    #[schema(minimum = 0.0)]
     pub damping_rotating: f64,
     /// Viscous nonrotating damping, N s/m (>= 0). Kept under every damping model.
     #[serde(default)]
+    #[schema(minimum = 0.0)]
     pub damping_nonrotating: f64,
 }
 
@@ -81,13 +87,17 @@ pub struct BeamInput {
 #[serde(deny_unknown_fields)]
 pub struct MaterialInput {
     /// Young's modulus, Pa (> 0).
+    #[schema(exclusive_minimum = 0.0)]
     pub young_modulus: f64,
     /// Density, kg/m^3 (> 0).
+    #[schema(exclusive_minimum = 0.0)]
     pub density: f64,
     /// Poisson's ratio, in (-1, 0.5).
+    #[schema(exclusive_minimum = -1.0, exclusive_maximum = 0.5)]
     pub poisson_ratio: f64,
     /// Loss factor of the material: rotating hysteretic damping, in [0, 1).
     #[serde(default)]
+    #[schema(minimum = 0.0, exclusive_maximum = 1.0)]
     pub loss_factor: f64,
 }
 
@@ -96,11 +106,14 @@ pub struct MaterialInput {
 #[serde(deny_unknown_fields)]
 pub struct SegmentInput {
     /// Length, m (> 0).
+    #[schema(exclusive_minimum = 0.0)]
     pub length: f64,
     /// Outer diameter, m (> 0).
+    #[schema(exclusive_minimum = 0.0)]
     pub outer_diameter: f64,
     /// Inner diameter, m (>= 0, < outer diameter; default 0: solid).
     #[serde(default)]
+    #[schema(minimum = 0.0)]
     pub inner_diameter: f64,
     /// Name of a material in `materials`.
     pub material: String,
@@ -116,14 +129,17 @@ pub struct SegmentInput {
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct DiskInput {
+    #[schema(minimum = 0)]
     pub node: i64,
     /// Mass, kg (>= 0).
     pub mass: f64,
     /// Polar moment of inertia, kg m^2 (>= 0).
     #[serde(default)]
+    #[schema(minimum = 0.0)]
     pub polar_inertia: f64,
     /// Transverse (diametral) moment of inertia, kg m^2 (>= 0).
     #[serde(default)]
+    #[schema(minimum = 0.0)]
     pub transverse_inertia: f64,
 }
 
@@ -131,14 +147,18 @@ pub struct DiskInput {
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SupportInput {
+    #[schema(minimum = 0)]
     pub node: i64,
     /// Stiffness, N/m (>= 0).
+    #[schema(minimum = 0.0)]
     pub stiffness: f64,
     /// Viscous damping, N s/m (>= 0).
     #[serde(default)]
+    #[schema(minimum = 0.0)]
     pub damping: f64,
     /// Loss factor of the support: nonrotating hysteretic damping, in [0, 1).
     #[serde(default)]
+    #[schema(minimum = 0.0, exclusive_maximum = 1.0)]
     pub loss_factor: f64,
 }
 
@@ -250,9 +270,11 @@ pub struct NonviscousInput {
 pub struct BranchesInput {
     /// Number of branches m, 1..=12 (default 3).
     #[serde(default)]
+    #[schema(minimum = 1, maximum = 12)]
     pub branches: Option<i64>,
     /// Ratio a between consecutive relaxation rates (default 10, one decade).
     #[serde(default)]
+    #[schema(exclusive_minimum = 1.0)]
     pub spacing: Option<f64>,
     /// Weights nu_j of the branch stiffness on the main coordinate, one per branch (default 1:
     /// plain Maxwell branches). The paper's Example 1 uses nu_j = 1/gamma_j for the
@@ -286,10 +308,12 @@ impl<'de> Deserialize<'de> for SpeedsInput {
 #[serde(deny_unknown_fields)]
 pub struct SpeedRange {
     /// First speed, rad/s (>= 0).
+    #[schema(minimum = 0.0)]
     pub start: f64,
     /// Last speed, rad/s (> start).
     pub stop: f64,
     /// Number of speeds (>= 2).
+    #[schema(minimum = 2)]
     pub count: i64,
 }
 
@@ -609,6 +633,7 @@ pub struct DampingMatricesResponse {
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ForceInput {
+    #[schema(minimum = 0)]
     pub node: i64,
     /// Angle of the force from the x axis, rad.
     #[serde(default)]
@@ -622,14 +647,17 @@ pub struct ForceInput {
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct UnbalanceInput {
+    #[schema(minimum = 0)]
     pub node: i64,
     /// `m e`, kg m (>= 0).
+    #[schema(minimum = 0.0)]
     pub amount: f64,
     /// Angle on the rotor, rad (0: on the x axis at t = 0).
     #[serde(default)]
     pub phase: f64,
     /// Time it appears, s (default 0); later than 0 makes a sudden unbalance (blade loss).
     #[serde(default)]
+    #[schema(minimum = 0.0)]
     pub from: f64,
 }
 
@@ -652,8 +680,10 @@ pub struct TimeResponseRequest {
     #[serde(default)]
     pub unbalances: Vec<UnbalanceInput>,
     /// Length of the simulation, s.
+    #[schema(exclusive_minimum = 0.0)]
     pub duration: f64,
     /// Output sampling interval, s: samples at 0, dt, 2 dt, ... up to `duration`.
+    #[schema(exclusive_minimum = 0.0)]
     pub output_interval: f64,
     /// Nodes to report (default: all nodes with a translation).
     #[serde(default)]
@@ -692,8 +722,10 @@ pub struct TimeResponseResponse {
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SteadyUnbalanceInput {
+    #[schema(minimum = 0)]
     pub node: i64,
     /// `m e`, kg m.
+    #[schema(minimum = 0.0)]
     pub amount: f64,
     #[serde(default)]
     pub phase: f64,

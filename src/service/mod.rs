@@ -87,7 +87,8 @@ pub fn router(state: AppState) -> (Router, utoipa::openapi::OpenApi) {
                     .and_then(|v| v.to_str().ok())
                     .unwrap_or("-");
                 tracing::info_span!("request", method = %req.method(), uri = %req.uri(), request_id = %id)
-            }),
+            })
+            .on_response(tower_http::trace::DefaultOnResponse::new().level(tracing::Level::INFO)),
         )
         .layer(tower_http::request_id::PropagateRequestIdLayer::new(request_id.clone()))
         .layer(tower_http::request_id::SetRequestIdLayer::new(request_id, RequestIds::default()));

@@ -298,6 +298,7 @@ fn damping_report(
         e @ report::ReportError::Unreachable { .. } => {
             ApiError::Invalid(Invalid::one("fit.max_deviation", e.to_string()))
         }
+        e @ report::ReportError::NonFinite => ApiError::Unsolvable(e.to_string()),
         e @ report::ReportError::TooLarge { .. } => {
             ApiError::Invalid(Invalid::one("damping", e.to_string()))
         }

@@ -114,6 +114,8 @@ pub enum TimeError {
     TooManySteps(usize),
     /// The step size fell below round-off.
     StepTooSmall(f64),
+    /// The response left floating point range (an unstable rotor over a long time).
+    Overflow,
     Cancelled,
 }
 
@@ -133,6 +135,11 @@ impl std::fmt::Display for TimeError {
             ),
             Self::StepTooSmall(t) => write!(f, "the step size fell below round-off at t = {t} s"),
             Self::Cancelled => write!(f, "cancelled"),
+            Self::Overflow => write!(
+                f,
+                "the response grows beyond floating point range (the rotor is unstable at this \
+                 speed): shorten the duration"
+            ),
         }
     }
 }
@@ -268,12 +275,21 @@ pub fn time_response(
     let out: Vec<usize> = spec.nodes.iter().map(|&n| translation(system, n)).collect();
     if let (Some(w), false) = (spec.speed.constant(), force_implicit) {
         match exact::solve(state, w, &forcing, spec, &out, control) {
-            Ok(r) => return Ok(r),
+            Ok(r) => return finite(r),
             Err(TimeError::Cancelled) => return Err(TimeError::Cancelled),
             Err(_) => {} // a nearly defective state matrix: integrate instead
         }
     }
-    implicit::solve(state, &forcing, spec, &out, control)
+    finite(implicit::solve(state, &forcing, spec, &out, control)?)
+}
+
+/// No NaN or infinity leaves: an overflowing response is an error with its reason.
+fn finite(r: TimeResult) -> Result<TimeResult, TimeError> {
+    let ok = r
+        .nodes
+        .iter()
+        .all(|(_, h)| h.iter().all(|z| z.re.is_finite() && z.im.is_finite()));
+    if ok { Ok(r) } else { Err(TimeError::Overflow) }
 }
 
 /// Displacement rows of the reported degrees of freedom in the state.
