@@ -33,6 +33,36 @@ use crate::model::rotor::Rotor;
 use crate::model::speeds::SpeedGrid;
 use crate::system::RotorSystem;
 
+/// The errors every analysis endpoint may answer, as problem+json.
+#[derive(utoipa::IntoResponses)]
+#[allow(dead_code)] // only read by the OpenAPI derive
+enum AnalysisErrors {
+    #[response(
+        status = 400,
+        description = "Malformed JSON",
+        content_type = "application/problem+json"
+    )]
+    Malformed(Problem),
+    #[response(
+        status = 413,
+        description = "Body too large",
+        content_type = "application/problem+json"
+    )]
+    TooLarge(Problem),
+    #[response(
+        status = 422,
+        description = "Invalid model",
+        content_type = "application/problem+json"
+    )]
+    Invalid(Problem),
+    #[response(
+        status = 503,
+        description = "Queue full; see Retry-After",
+        content_type = "application/problem+json"
+    )]
+    Busy(Problem),
+}
+
 /// Liveness: 200 while the process lives.
 #[utoipa::path(get, path = "/healthz", tag = "operations",
     responses((status = 200, description = "Alive", body = Status)))]
@@ -75,10 +105,7 @@ pub async fn readyz(State(st): State<AppState>) -> (StatusCode, Json<Status>) {
         (status = 200, description = "Poles (JSON; the table or the plot by Accept)",
          content((ModalResponse = "application/json"), (String = "text/csv"))),
         (status = 406, description = "No acceptable format", body = Problem, content_type = "application/problem+json"),
-        (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
-        (status = 413, description = "Body too large", body = Problem, content_type = "application/problem+json"),
-        (status = 422, description = "Invalid model", body = Problem, content_type = "application/problem+json"),
-        (status = 503, description = "Queue full; see Retry-After", body = Problem, content_type = "application/problem+json")))]
+        AnalysisErrors))]
 pub async fn modal(
     State(st): State<AppState>,
     headers: HeaderMap,
@@ -114,10 +141,7 @@ pub fn prepare_modal(st: &AppState, req: ModalRequest) -> Result<Task, ApiError>
         (status = 200, description = "Branches (JSON; the table or the plot by Accept)",
          content((CampbellResponse = "application/json"), (String = "text/csv"), (String = "image/svg+xml"))),
         (status = 406, description = "No acceptable format", body = Problem, content_type = "application/problem+json"),
-        (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
-        (status = 413, description = "Body too large", body = Problem, content_type = "application/problem+json"),
-        (status = 422, description = "Invalid model", body = Problem, content_type = "application/problem+json"),
-        (status = 503, description = "Queue full; see Retry-After", body = Problem, content_type = "application/problem+json")))]
+        AnalysisErrors))]
 pub async fn campbell(
     State(st): State<AppState>,
     headers: HeaderMap,
@@ -152,10 +176,7 @@ pub fn prepare_campbell(st: &AppState, req: SweepRequest) -> Result<Task, ApiErr
         (status = 200, description = "Threshold (JSON; the table or the plot by Accept)",
          content((StabilityResponse = "application/json"), (String = "text/csv"), (String = "image/svg+xml"))),
         (status = 406, description = "No acceptable format", body = Problem, content_type = "application/problem+json"),
-        (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
-        (status = 413, description = "Body too large", body = Problem, content_type = "application/problem+json"),
-        (status = 422, description = "Invalid model", body = Problem, content_type = "application/problem+json"),
-        (status = 503, description = "Queue full; see Retry-After", body = Problem, content_type = "application/problem+json")))]
+        AnalysisErrors))]
 pub async fn stability(
     State(st): State<AppState>,
     headers: HeaderMap,
@@ -192,10 +213,7 @@ pub fn prepare_stability(st: &AppState, req: SweepRequest) -> Result<Task, ApiEr
 #[utoipa::path(post, path = "/v1/damping", tag = "analyses", request_body = DampingMatricesRequest,
     responses(
         (status = 200, description = "Matrices and fit report", body = DampingMatricesResponse),
-        (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
-        (status = 413, description = "Body too large", body = Problem, content_type = "application/problem+json"),
-        (status = 422, description = "Invalid model", body = Problem, content_type = "application/problem+json"),
-        (status = 503, description = "Queue full; see Retry-After", body = Problem, content_type = "application/problem+json")))]
+        AnalysisErrors))]
 pub async fn damping_matrices(
     State(st): State<AppState>,
     headers: HeaderMap,
@@ -319,10 +337,7 @@ fn damping_report(
         (status = 200, description = "Displacements of the nodes (JSON; the table or the plot by Accept)",
          content((TimeResponseResponse = "application/json"), (String = "text/csv"), (String = "image/svg+xml"))),
         (status = 406, description = "No acceptable format", body = Problem, content_type = "application/problem+json"),
-        (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
-        (status = 413, description = "Body too large", body = Problem, content_type = "application/problem+json"),
-        (status = 422, description = "Invalid model", body = Problem, content_type = "application/problem+json"),
-        (status = 503, description = "Queue full; see Retry-After", body = Problem, content_type = "application/problem+json")))]
+        AnalysisErrors))]
 pub async fn time_response(
     State(st): State<AppState>,
     headers: HeaderMap,
@@ -374,17 +389,7 @@ pub fn prepare_time_response(st: &AppState, req: TimeResponseRequest) -> Result<
     let parsed = validate_model(st, &req.rotor, &req.damping, bad)?;
     let mut bad = Invalid::default();
     let nodes = parsed.rotor.node_count();
-    let node = |bad: &mut Invalid, at: String, k: i64| -> Option<usize> {
-        if k >= 0 && (k as u64) < nodes as u64 {
-            Some(k as usize)
-        } else {
-            bad.push(
-                at,
-                format!("node {k} does not exist (nodes 0 to {})", nodes - 1),
-            );
-            None
-        }
-    };
+    let node = |bad: &mut Invalid, at: String, k: i64| node_index(bad, at, k, nodes);
     let mut forces = vec![];
     for (i, f) in req.forces.iter().enumerate() {
         let at = format!("forces[{i}]");
@@ -469,10 +474,7 @@ pub fn prepare_time_response(st: &AppState, req: TimeResponseRequest) -> Result<
         (status = 200, description = "Amplitude and phase per node and speed (JSON; the table or the plot by Accept)",
          content((UnbalanceResponseResponse = "application/json"), (String = "text/csv"), (String = "image/svg+xml"))),
         (status = 406, description = "No acceptable format", body = Problem, content_type = "application/problem+json"),
-        (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
-        (status = 413, description = "Body too large", body = Problem, content_type = "application/problem+json"),
-        (status = 422, description = "Invalid model", body = Problem, content_type = "application/problem+json"),
-        (status = 503, description = "Queue full; see Retry-After", body = Problem, content_type = "application/problem+json")))]
+        AnalysisErrors))]
 pub async fn unbalance_response(
     State(st): State<AppState>,
     headers: HeaderMap,
@@ -502,17 +504,7 @@ pub fn prepare_unbalance_response(
     let parsed = validate_model(st, &req.rotor, &req.damping, bad)?;
     let mut bad = Invalid::default();
     let nodes = parsed.rotor.node_count();
-    let node = |bad: &mut Invalid, at: String, k: i64| -> Option<usize> {
-        if k >= 0 && (k as u64) < nodes as u64 {
-            Some(k as usize)
-        } else {
-            bad.push(
-                at,
-                format!("node {k} does not exist (nodes 0 to {})", nodes - 1),
-            );
-            None
-        }
-    };
+    let node = |bad: &mut Invalid, at: String, k: i64| node_index(bad, at, k, nodes);
     let mut unb = vec![];
     for (i, u) in req.unbalances.iter().enumerate() {
         let at = format!("unbalances[{i}]");
@@ -557,6 +549,19 @@ pub fn prepare_unbalance_response(
             model_name,
         )))
     }))
+}
+
+/// A node of a rotor with `nodes` nodes, or the error at `at`.
+fn node_index(bad: &mut Invalid, at: String, k: i64, nodes: usize) -> Option<usize> {
+    if k >= 0 && (k as u64) < nodes as u64 {
+        Some(k as usize)
+    } else {
+        bad.push(
+            at,
+            format!("node {k} does not exist (nodes 0 to {})", nodes - 1),
+        );
+        None
+    }
 }
 
 /// The nodes to report: the requested ones (validated) or all.
