@@ -6,10 +6,12 @@ FROM rust:1.95-slim-bookworm AS build
 WORKDIR /src
 # Dependencies first, in their own layer, so that source edits rebuild only the crate.
 COPY Cargo.toml Cargo.lock ./
-RUN mkdir src && echo 'fn main() {}' > src/main.rs && echo '' > src/lib.rs \
+RUN mkdir src benches && echo 'fn main() {}' > src/main.rs && echo '' > src/lib.rs \
+    && echo 'fn main() {}' > benches/speed.rs \
     && cargo build --release --locked \
-    && rm -rf src target/release/deps/whirl* target/release/deps/libwhirl* target/release/whirl*
+    && rm -rf src benches target/release/deps/whirl* target/release/deps/libwhirl* target/release/whirl*
 COPY src src
+COPY benches benches
 RUN cargo build --release --locked --bin whirl && strip target/release/whirl
 
 FROM debian:bookworm-slim
