@@ -52,6 +52,49 @@ fn runs(xs: &[f64], ys: &[Option<f64>]) -> Vec<Vec<(f64, f64)>> {
     out
 }
 
+/// The series legend, boxed, at `pos`.
+fn legend<'a, DB: DrawingBackend + 'a, CT>(
+    chart: &mut ChartContext<'a, DB, CT>,
+    pos: SeriesLabelPosition,
+) -> Result<(), Err>
+where
+    CT: plotters::coord::CoordTranslate,
+    DB::ErrorType: 'static,
+{
+    chart
+        .configure_series_labels()
+        .border_style(BLACK)
+        .background_style(WHITE.mix(0.85))
+        .position(pos)
+        .draw()?;
+    Ok(())
+}
+
+/// One labelled line per node, in the palette's colours.
+fn node_lines<'a, DB: DrawingBackend + 'a, CT>(
+    chart: &mut ChartContext<'a, DB, CT>,
+    xs: &[f64],
+    nodes: &[(usize, Vec<f64>)],
+) -> Result<(), Err>
+where
+    CT: plotters::coord::CoordTranslate<From = (f64, f64)>,
+    DB::ErrorType: 'static,
+{
+    for (k, (node, ys)) in nodes.iter().enumerate() {
+        let color = PALETTE[k % PALETTE.len()];
+        chart
+            .draw_series(LineSeries::new(
+                xs.iter().cloned().zip(ys.iter().cloned()),
+                color.stroke_width(1),
+            ))?
+            .label(format!("node {node}"))
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+            });
+    }
+    legend(chart, SeriesLabelPosition::UpperRight)
+}
+
 /// Campbell diagram (|frequency| against speed) over the decay-rate plot.
 pub fn campbell(c: &CampbellResponse) -> Result<String, Err> {
     let mut svg = String::new();
@@ -111,12 +154,7 @@ pub fn campbell(c: &CampbellResponse) -> Result<String, Err> {
                 RED.stroke_width(2),
             ))?;
         }
-        chart
-            .configure_series_labels()
-            .border_style(BLACK)
-            .background_style(WHITE.mix(0.85))
-            .position(SeriesLabelPosition::UpperLeft)
-            .draw()?;
+        legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
 
         let mut chart = ChartBuilder::on(&bottom)
             .caption("Decay-rate plot", ("sans-serif", 22))
@@ -152,12 +190,7 @@ pub fn campbell(c: &CampbellResponse) -> Result<String, Err> {
                 ))?
                 .label(format!("threshold {t:.1} rad/s ({:.0} rpm)", t * RPM))
                 .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RED.stroke_width(2)));
-            chart
-                .configure_series_labels()
-                .border_style(BLACK)
-                .background_style(WHITE.mix(0.85))
-                .position(SeriesLabelPosition::UpperLeft)
-                .draw()?;
+            legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
         }
         root.present()?;
     }
@@ -256,11 +289,7 @@ pub fn stability(s: &StabilityResponse) -> Result<String, Err> {
                 .draw_series(LineSeries::new(vec![(t, y0), (t, y1)], RED.stroke_width(2)))?
                 .label(format!("threshold {t:.2} rad/s ({:.0} rpm)", t * RPM))
                 .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RED.stroke_width(2)));
-            chart
-                .configure_series_labels()
-                .border_style(BLACK)
-                .background_style(WHITE.mix(0.85))
-                .draw()?;
+            legend(&mut chart, SeriesLabelPosition::UpperRight)?;
         }
         root.present()?;
     }
@@ -296,23 +325,9 @@ pub fn time(r: &TimeResponseResponse) -> Result<String, Err> {
             .y_label_formatter(&|v| format!("{v:.2e}"))
             .light_line_style(RGBColor(235, 235, 235))
             .draw()?;
-        for (k, (n, a)) in r.nodes.iter().zip(&amps).enumerate() {
-            let color = PALETTE[k % PALETTE.len()];
-            chart
-                .draw_series(LineSeries::new(
-                    r.time.iter().cloned().zip(a.iter().cloned()),
-                    color.stroke_width(1),
-                ))?
-                .label(format!("node {}", n.node))
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-                });
-        }
-        chart
-            .configure_series_labels()
-            .border_style(BLACK)
-            .background_style(WHITE.mix(0.85))
-            .draw()?;
+        let lines: Vec<(usize, Vec<f64>)> =
+            r.nodes.iter().zip(amps).map(|(n, a)| (n.node, a)).collect();
+        node_lines(&mut chart, &r.time, &lines)?;
         root.present()?;
     }
     Ok(svg)
@@ -354,23 +369,12 @@ pub fn unbalance(r: &UnbalanceResponseResponse) -> Result<String, Err> {
             .x_label_formatter(&|v| format!("{v:.0}"))
             .y_labels(0)
             .draw()?;
-        for (k, n) in r.nodes.iter().enumerate() {
-            let color = PALETTE[k % PALETTE.len()];
-            chart
-                .draw_series(LineSeries::new(
-                    r.speeds.iter().cloned().zip(n.amplitude.iter().cloned()),
-                    color.stroke_width(2),
-                ))?
-                .label(format!("node {}", n.node))
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-                });
-        }
-        chart
-            .configure_series_labels()
-            .border_style(BLACK)
-            .background_style(WHITE.mix(0.85))
-            .draw()?;
+        let lines: Vec<(usize, Vec<f64>)> = r
+            .nodes
+            .iter()
+            .map(|n| (n.node, n.amplitude.clone()))
+            .collect();
+        node_lines(&mut chart, &r.speeds, &lines)?;
         root.present()?;
     }
     Ok(svg)
