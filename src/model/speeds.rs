@@ -75,12 +75,4 @@ impl SpeedGrid {
     pub fn as_slice(&self) -> &[f64] {
         &self.0
     }
-
-    pub fn first(&self) -> f64 {
-        self.0[0]
-    }
-
-    pub fn last(&self) -> f64 {
-        self.0[self.0.len() - 1]
-    }
 }
