@@ -189,10 +189,6 @@ impl StateModel {
         &self.a1
     }
 
-    pub fn branches(&self) -> &Branches {
-        &self.branches
-    }
-
     /// The state matrix at spin speed `speed`.
     pub fn at(&self, speed: f64) -> CMat {
         &self.a0 + faer_scale(speed, &self.a1)

@@ -194,13 +194,6 @@ pub fn to_complex(a: &RMat) -> CMat {
     CMat::from_fn(a.nrows(), a.ncols(), |i, j| c64::new(a[(i, j)], 0.0))
 }
 
-/// `A + i B` for real `A`, `B`.
-pub fn complex_from_parts(re: &RMat, im: &RMat) -> CMat {
-    CMat::from_fn(re.nrows(), re.ncols(), |i, j| {
-        c64::new(re[(i, j)], im[(i, j)])
-    })
-}
-
 fn all_finite_r(a: &RMat) -> bool {
     (0..a.ncols()).all(|j| (0..a.nrows()).all(|i| a[(i, j)].is_finite()))
 }
