@@ -3,13 +3,13 @@
 //!
 //! (a) the 100-element compressor, 100 speeds, branches below 6000 rad/s;
 //! (b) Example 1 with nonviscous damping, 400 speeds;
-//! (c) 1 s of time response of the compressor at constant speed, and during a run-up;
+//! (c) 1 s of time response of the compressor at constant speed, and during a run-up (`runup`);
 //! (d) one modal solve of the compressor.
 
 use std::time::{Duration, Instant};
 
 use serde_json::Value;
-use whirl::analysis::campbell::campbell;
+use whirl::analysis::campbell::{campbell, campbell_below};
 use whirl::analysis::control::Control;
 use whirl::analysis::poles::poles_at;
 use whirl::analysis::time::{SpeedLaw, TimeSpec, time_response};
@@ -25,6 +25,16 @@ use whirl::system::RotorSystem;
 fn example(name: &str) -> Value {
     let path = format!("{}/examples/{name}", env!("CARGO_MANIFEST_DIR"));
     serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+/// The compressor example's rotor, Guyan-reduced to its translations as in the example or not.
+fn compressor(guyan: bool) -> RotorSystem {
+    let mut v = example("compressor-nvd.campbell.json")["rotor"].clone();
+    if !guyan {
+        v.as_object_mut().unwrap().remove("reduction");
+    }
+    let rotor: RotorInput = serde_json::from_value(v).unwrap();
+    RotorSystem::assemble(&Rotor::parse(&rotor, &Limits::default()).unwrap()).unwrap()
 }
 
 fn load(name: &str) -> (RotorSystem, DampingModel) {
@@ -48,62 +58,127 @@ fn best(runs: usize, mut f: impl FnMut()) -> Duration {
         .unwrap()
 }
 
+/// One dense complex eigendecomposition (values and vectors) of the matrix in `path`
+/// (`{"re": [[..]], "im": [[..]]}`, as `/v1/damping` returns it), single-threaded.
+fn eigen_of_file(path: &str) {
+    let v: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let rows = |k: &str| -> Vec<Vec<f64>> { serde_json::from_value(v[k].clone()).unwrap() };
+    let (re, im) = (rows("re"), rows("im"));
+    let n = re.len();
+    let a = linalg::CMat::from_fn(n, n, |i, j| linalg::c64::new(re[i][j], im[i][j]));
+    let t = best(7, || {
+        linalg::eigen(&a).unwrap();
+    });
+    println!(
+        "eigen: {:.2} ms for one {n} x {n} complex eigendecomposition (values and vectors, balanced, 1 thread)",
+        t.as_secs_f64() * 1e3
+    );
+}
+
 fn main() {
     linalg::set_sequential();
+    let args: Vec<String> = std::env::args()
+        .skip(1)
+        .filter(|a| a != "--bench")
+        .collect();
+    if let Some(i) = args.iter().position(|a| a == "--matrix") {
+        eigen_of_file(&args[i + 1]);
+        return;
+    }
+    // Sections to run: `cargo bench --bench speed -- a c` runs (a) and (c); none: all.
+    let wanted = |k: &str| args.is_empty() || args.iter().any(|a| a == k);
     let threads = rayon::current_num_threads();
     println!("whirl benchmarks: {threads} threads for sweeps, faer sequential per problem\n");
 
-    // (a) Compressor Campbell, 100 speeds, viscous (bearing damping, like ROSS) and nonviscous.
-    let (system, _) = load("compressor-nvd.campbell.json");
-    let speeds: Vec<f64> = (0..100).map(|i| i as f64 * 1500.0 / 99.0).collect();
-    for (name, model) in [
-        ("viscous", DampingModel::Viscous),
-        (
-            "equivalent, 8 modes",
-            DampingModel::Equivalent { modes: Some(8) },
-        ),
-        (
-            "nonviscous, 8 modes",
-            load("compressor-nvd.campbell.json").1,
-        ),
-        ("hysteretic", DampingModel::Hysteretic),
-    ] {
+    // (a) Compressor Campbell, 100 speeds, branches below 6000 rad/s: the example (Guyan
+    // reduced to the translations) and the same rotor unreduced (as ROSS models it).
+    if wanted("a") {
+        let speeds: Vec<f64> = (0..100).map(|i| i as f64 * 1500.0 / 99.0).collect();
+        for guyan in [true, false] {
+            let system = compressor(guyan);
+            for (name, model, reduce) in [
+                ("viscous, full model", DampingModel::Viscous, false),
+                ("viscous", DampingModel::Viscous, true),
+                (
+                    "equivalent, 8 modes",
+                    DampingModel::Equivalent { modes: Some(8) },
+                    true,
+                ),
+                (
+                    "nonviscous, 8 modes",
+                    load("compressor-nvd.campbell.json").1,
+                    true,
+                ),
+                ("hysteretic", DampingModel::Hysteretic, true),
+            ] {
+                if !guyan && !reduce {
+                    continue; // 100 eigenproblems of 404 states: tens of seconds, shown by (d)
+                }
+                let mut out = None;
+                let t = best(3, || {
+                    let full = DampedModel::build(&system, &model).unwrap();
+                    let c = campbell_below(
+                        &system,
+                        &model,
+                        &full,
+                        &speeds,
+                        6000.0,
+                        reduce,
+                        &Control::default(),
+                    )
+                    .unwrap();
+                    out = Some((full.states(), c));
+                });
+                let (full_states, c) = out.unwrap();
+                let problems = if matches!(model, DampingModel::Hysteretic) {
+                    4
+                } else {
+                    1
+                };
+                let size = match &c.reduction {
+                    Some(r) => format!(
+                        "{} states ({} modes to {:.0} rad/s + {} static corrections, full {}; \
+                         checked at {} rad/s: {:.1e})",
+                        r.states,
+                        r.modes,
+                        r.band,
+                        r.vectors - r.modes,
+                        r.full_states,
+                        r.checked_speed,
+                        r.max_relative_error
+                    ),
+                    None => format!("{full_states} states"),
+                };
+                println!(
+                    "(a) compressor ({} dof) Campbell, {name}: {:.3} s for 100 speeds, {:.2} ms per speed, \
+                     {problems} eigenproblem(s) of {size}, {} branches",
+                    system.n(),
+                    t.as_secs_f64(),
+                    t.as_secs_f64() * 10.0,
+                    c.branches.len()
+                );
+            }
+        }
+    }
+
+    // (b) Example 1, NVD, 400 speeds.
+    if wanted("b") {
+        let (system, model) = load("example1-nvd.campbell.json");
         let m = DampedModel::build(&system, &model).unwrap();
-        let t = best(3, || {
-            let mut c = campbell(&m, &speeds, &Control::default()).unwrap();
-            c.keep_below(6000.0);
+        let speeds: Vec<f64> = (0..400).map(|i| i as f64 * 4000.0 / 399.0).collect();
+        let t = best(5, || {
+            campbell(&m, &speeds, &Control::default()).unwrap();
         });
-        let problems = if matches!(model, DampingModel::Hysteretic) {
-            4
-        } else {
-            1
-        };
         println!(
-            "(a) compressor Campbell, {name}: {:.3} s for 100 speeds, {:.1} ms per speed, \
-             {problems} eigenproblem(s) of {} states per speed",
+            "(b) Example 1 NVD Campbell: {:.4} s for 400 speeds, {:.3} ms per speed, eigenproblem of {} states",
             t.as_secs_f64(),
-            t.as_secs_f64() * 10.0,
+            t.as_secs_f64() * 1e3 / 400.0,
             m.states()
         );
     }
 
-    // (b) Example 1, NVD, 400 speeds.
-    let (system, model) = load("example1-nvd.campbell.json");
-    let m = DampedModel::build(&system, &model).unwrap();
-    let speeds: Vec<f64> = (0..400).map(|i| i as f64 * 4000.0 / 399.0).collect();
-    let t = best(5, || {
-        campbell(&m, &speeds, &Control::default()).unwrap();
-    });
-    println!(
-        "(b) Example 1 NVD Campbell: {:.4} s for 400 speeds, {:.3} ms per speed, eigenproblem of {} states",
-        t.as_secs_f64(),
-        t.as_secs_f64() * 1e3 / 400.0,
-        m.states()
-    );
-
-    // (c) Compressor, 1 s of time response (unbalance at mid-span, output every 0.1 ms).
-    let (system, _) = load("compressor-nvd.campbell.json");
-    let m = DampedModel::build(&system, &DampingModel::Viscous).unwrap();
+    // (c) Compressor, 1 s of time response (unbalance at mid-span, output every 0.1 ms), at
+    // constant speed (exact) and during a run-up (TR-BDF2; minutes: `runup` runs it alone).
     let unbalance = Unbalance {
         node: 45,
         amount: 1e-3,
@@ -120,38 +195,59 @@ fn main() {
         tolerance: 1e-6,
         max_steps: 5_000_000,
     };
-    let constant = spec(SpeedLaw::Constant(1000.0));
-    let t = best(3, || {
-        time_response(&system, &m, &constant, false, &Control::default()).unwrap();
-    });
-    println!(
-        "(c) compressor time response, constant speed, 1 s, 10001 samples, 3 nodes: {:.3} s (exact, {} states)",
-        t.as_secs_f64(),
-        m.states()
-    );
-    let profile = Pwl::parse(
-        &[[0.0, 0.0], [1.0, 1500.0]],
-        "p",
-        false,
-        &mut Invalid::default(),
-    )
-    .unwrap();
-    let run_up = spec(SpeedLaw::Profile(profile));
-    let t0 = Instant::now();
-    let r = time_response(&system, &m, &run_up, false, &Control::default()).unwrap();
-    println!(
-        "(c) compressor time response, run-up 0 to 1500 rad/s in 1 s: {:.3} s ({} TR-BDF2 steps)",
-        t0.elapsed().as_secs_f64(),
-        r.steps
-    );
+    if wanted("c") {
+        for guyan in [true, false] {
+            let system = compressor(guyan);
+            let m = DampedModel::build(&system, &DampingModel::Viscous).unwrap();
+            let constant = spec(SpeedLaw::Constant(1000.0));
+            let t = best(3, || {
+                time_response(&system, &m, &constant, false, &Control::default()).unwrap();
+            });
+            println!(
+                "(c) compressor ({} dof) time response, constant speed, 1 s, 10001 samples, 3 nodes: \
+                 {:.3} s (exact: one eigenproblem of {} states)",
+                system.n(),
+                t.as_secs_f64(),
+                m.states()
+            );
+        }
+    }
+    if std::env::args().any(|a| a == "runup") {
+        let system = compressor(true);
+        let m = DampedModel::build(&system, &DampingModel::Viscous).unwrap();
+        let profile = Pwl::parse(
+            &[[0.0, 0.0], [1.0, 1500.0]],
+            "p",
+            false,
+            &mut Invalid::default(),
+        )
+        .unwrap();
+        let run_up = spec(SpeedLaw::Profile(profile));
+        let t0 = Instant::now();
+        let r = time_response(&system, &m, &run_up, false, &Control::default()).unwrap();
+        println!(
+            "(c) compressor ({} dof) time response, run-up 0 to 1500 rad/s in 1 s: {:.3} s ({} TR-BDF2 steps of {} states)",
+            system.n(),
+            t0.elapsed().as_secs_f64(),
+            r.steps,
+            m.states()
+        );
+    }
 
-    // (d) One modal solve of the compressor.
-    let t = best(5, || {
-        poles_at(&m, 1000.0).unwrap();
-    });
-    println!(
-        "(d) compressor modal solve: {:.4} s ({} states, eigenvalues and vectors, balanced)",
-        t.as_secs_f64(),
-        m.states()
-    );
+    // (d) One modal solve of the compressor (all poles, values and vectors).
+    if wanted("d") {
+        for guyan in [true, false] {
+            let system = compressor(guyan);
+            let m = DampedModel::build(&system, &DampingModel::Viscous).unwrap();
+            let t = best(5, || {
+                poles_at(&m, 1000.0).unwrap();
+            });
+            println!(
+                "(d) compressor ({} dof) modal solve: {:.4} s ({} states, eigenvalues and vectors, balanced)",
+                system.n(),
+                t.as_secs_f64(),
+                m.states()
+            );
+        }
+    }
 }

@@ -24,6 +24,8 @@ pub enum DofKind {
     Translation,
     /// Complex rotation `phi_y - i phi_x`, rad.
     Rotation,
+    /// Modal coordinate `eta_k` of a reduced system (`node` is the mode index `k`, from 0).
+    Mode,
 }
 
 /// One complex degree of freedom: its node and kind.

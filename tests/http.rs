@@ -419,6 +419,36 @@ async fn every_bundled_example_runs() {
     assert!(count >= 5);
 }
 
+#[tokio::test]
+async fn a_bounded_campbell_reports_its_modal_reduction() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/compressor-nvd.campbell.json"
+    );
+    let mut body: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    body["speeds"] = json!({"start": 0, "stop": 1500, "count": 4});
+    let (status, v) = post("/v1/campbell", body.clone()).await;
+    assert_eq!(status, StatusCode::OK, "{v}");
+    let r = &v["reduction"];
+    // The 8 modes below twice the 6000 rad/s bound, with their static corrections.
+    assert_eq!(r["modes"], 8, "{r}");
+    assert!(r["vectors"].as_u64().unwrap() > 8, "{r}");
+    assert!(
+        2 * r["states"].as_u64().unwrap() <= r["full_states"].as_u64().unwrap(),
+        "{r}"
+    );
+    assert_eq!(num(&r["checked_speed"]), 1500.0);
+    assert!(num(&r["max_relative_error"]) <= 1e-6, "{r}");
+    body["modal_reduction"] = json!(false);
+    let (status, full) = post("/v1/campbell", body).await;
+    assert_eq!(status, StatusCode::OK, "{full}");
+    assert!(full["reduction"].is_null());
+    assert_eq!(
+        full["branches"].as_array().unwrap().len(),
+        v["branches"].as_array().unwrap().len()
+    );
+}
+
 fn matrix(v: &Value) -> Vec<Vec<f64>> {
     v.as_array()
         .unwrap()

@@ -4,10 +4,13 @@
 use super::AnalysisError;
 use super::control::Control;
 use super::poles::Whirl;
+use super::reduction::{Reduction, reduce_for_sweep};
 use super::stability::{Threshold, sweep, threshold};
 use super::tracking::track;
 use crate::damping::DampedModel;
 use crate::linalg::c64;
+use crate::model::damping::DampingModel;
+use crate::system::RotorSystem;
 
 /// One branch over the sweep.
 #[derive(Debug, Clone)]
@@ -26,6 +29,8 @@ pub struct CampbellResult {
     /// Forward branches crossing `omega = Omega`, interpolated, ascending.
     pub critical_speeds: Vec<f64>,
     pub threshold: Option<Threshold>,
+    /// The modal reduction the sweep ran on, if any (see [`campbell_below`]).
+    pub reduction: Option<Reduction>,
 }
 
 pub fn campbell(
@@ -63,7 +68,38 @@ pub fn campbell(
         branches,
         critical_speeds,
         threshold,
+        reduction: None,
     })
+}
+
+/// The Campbell diagram of the branches below `bound` (`f64::INFINITY`: all), on a modal
+/// reduction of the rotor where one is checked to hold (`reduce`; see [`super::reduction`]),
+/// else on `full`. The threshold is that of the model solved: with a reduction, of the poles
+/// the retained modes carry.
+pub fn campbell_below(
+    system: &RotorSystem,
+    damping: &DampingModel,
+    full: &DampedModel,
+    speeds: &[f64],
+    bound: f64,
+    reduce: bool,
+    control: &Control,
+) -> Result<CampbellResult, AnalysisError> {
+    let reduced = if reduce {
+        reduce_for_sweep(system, damping, full, speeds, bound)?
+    } else {
+        None
+    };
+    let mut r = match reduced {
+        Some((model, reduction)) => {
+            let mut r = campbell(&model, speeds, control)?;
+            r.reduction = Some(reduction);
+            r
+        }
+        None => campbell(full, speeds, control)?,
+    };
+    r.keep_below(bound);
+    Ok(r)
 }
 
 impl CampbellResult {

@@ -5,6 +5,7 @@ pub mod campbell;
 pub mod control;
 pub mod modal;
 pub mod poles;
+pub mod reduction;
 pub mod stability;
 pub mod time;
 pub mod tracking;

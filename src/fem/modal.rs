@@ -5,7 +5,7 @@
 //! kept; so one formula serves the full and the reduced mode sets (paper eq. 7 and after).
 
 use crate::linalg::{self, LinalgError, RMat};
-use crate::system::RotorSystem;
+use crate::system::{Dof, DofKind, RotorSystem};
 
 /// Mass-normalised undamped modes of the nonrotating rotor, lowest first.
 #[derive(Debug, Clone)]
@@ -82,6 +82,146 @@ impl ModalBasis {
     /// Modal projection of a symmetric matrix: `Phi^T A Phi`.
     pub fn project(&self, a: &RMat) -> RMat {
         self.phi.transpose() * a * &self.phi
+    }
+
+    /// The lowest `count` modes augmented with their static correction, then made modes of the
+    /// subspace again (Rayleigh-Ritz on `(K, M)`).
+    ///
+    /// Truncating modes neglects how the dropped modes respond to the forces that couple the
+    /// kept ones: gyroscopic `G phi_k`, damping `C phi_k` and loss `K'' phi_k`. Well below the
+    /// dropped band that response is quasi-static, `K^-1 F`; adding those vectors (their part
+    /// outside the kept modes in the M inner product, linearly independent ones only) takes
+    /// the compressor example's poles below 6000 rad/s from 1e-4 to 7e-8 relative error with
+    /// the same 8 modes. The result is M-orthonormal and K-diagonal, and its lowest modes are
+    /// the exact ones (a Ritz pair that is an eigenpair is reproduced).
+    pub fn augmented(&self, system: &RotorSystem, count: usize) -> Result<Self, ModalError> {
+        let kept = self.truncated(count);
+        let n = system.n();
+        let m = &system.mass;
+        let k = system.stiffness();
+        let couplings: Vec<&RMat> = [
+            &system.gyroscopic,
+            &system.damping_rotating,
+            &system.damping_nonrotating,
+            &system.hysteretic_rotating,
+            &system.hysteretic_nonrotating,
+        ]
+        .into_iter()
+        .filter(|a| (0..n).any(|j| (0..n).any(|i| a[(i, j)] != 0.0)))
+        .collect();
+        let mut f = RMat::zeros(n, couplings.len() * kept.len());
+        for (b, a) in couplings.iter().enumerate() {
+            let block = *a * &kept.phi;
+            for j in 0..kept.len() {
+                for i in 0..n {
+                    f[(i, b * kept.len() + j)] = block[(i, j)];
+                }
+            }
+        }
+        let x = linalg::solve_real_matrix(&k, &f).map_err(ModalError::Linalg)?;
+        // K v is tracked beside every basis vector v, never formed as K times v: for a low mode
+        // of a stiff shaft that product cancels to eps * w_max^2 / w^2 relative (5e-6 on the
+        // unreduced compressor), while K phi = w^2 M phi and K (K^-1 f) = f are exact.
+        let kept_k = m * &kept.phi;
+        let mut basis: Vec<Vec<f64>> = (0..kept.len())
+            .map(|j| (0..n).map(|i| kept.phi[(i, j)]).collect())
+            .collect();
+        let mut k_basis: Vec<Vec<f64>> = (0..kept.len())
+            .map(|j| {
+                let w2 = kept.omega[j] * kept.omega[j];
+                (0..n).map(|i| w2 * kept_k[(i, j)]).collect()
+            })
+            .collect();
+        for j in 0..x.ncols() {
+            let mut v: Vec<f64> = (0..n).map(|i| x[(i, j)]).collect();
+            let mut kv: Vec<f64> = (0..n).map(|i| f[(i, j)]).collect();
+            let start = mass_norm(m, &v);
+            if start == 0.0 || !start.is_finite() {
+                continue;
+            }
+            // Twice is enough (Kahan): M-orthogonal to every vector kept so far.
+            for _twice in 0..2 {
+                let mv: Vec<f64> = (0..n)
+                    .map(|i| (0..n).map(|c| m[(i, c)] * v[c]).sum())
+                    .collect();
+                for (b, kb) in basis.iter().zip(&k_basis) {
+                    let c: f64 = (0..n).map(|i| b[i] * mv[i]).sum();
+                    for i in 0..n {
+                        v[i] -= c * b[i];
+                        kv[i] -= c * kb[i];
+                    }
+                }
+            }
+            let norm = mass_norm(m, &v);
+            if norm > 1e-8 * start {
+                basis.push(v.iter().map(|x| x / norm).collect());
+                k_basis.push(kv.iter().map(|x| x / norm).collect());
+            }
+        }
+        let v = RMat::from_fn(n, basis.len(), |i, j| basis[j][i]);
+        let kv = RMat::from_fn(n, basis.len(), |i, j| k_basis[j][i]);
+        let kr = v.transpose() * &kv;
+        let kr = RMat::from_fn(kr.nrows(), kr.ncols(), |i, j| {
+            0.5 * (kr[(i, j)] + kr[(j, i)])
+        });
+        let mr = v.transpose() * m * &v;
+        let ritz = linalg::symmetric_modes(&kr, &mr).map_err(ModalError::Linalg)?;
+        Ok(ModalBasis {
+            omega: ritz
+                .omega_squared
+                .iter()
+                .map(|w2| w2.max(0.0).sqrt())
+                .collect(),
+            phi: &v * &ritz.phi,
+        })
+    }
+}
+
+/// `sqrt(v^T M v)`.
+fn mass_norm(m: &RMat, v: &[f64]) -> f64 {
+    let n = v.len();
+    (0..n)
+        .map(|i| v[i] * (0..n).map(|k| m[(i, k)] * v[k]).sum::<f64>())
+        .sum::<f64>()
+        .max(0.0)
+        .sqrt()
+}
+
+impl ModalBasis {
+    /// The rotor in the coordinates of these modes, `q = Phi eta`: every matrix becomes
+    /// `Phi^T A Phi` (so the mass is the identity). A Rayleigh-Ritz reduction: exact with all
+    /// modes, and for a truncated set the low poles converge as the retained band widens
+    /// (`analysis::reduction` measures how well).
+    ///
+    /// The total stiffness is `diag(w^2)` by construction; it is set so rather than projected,
+    /// which would cancel (see [`ModalBasis::augmented`]). The supports' part is projected
+    /// (it is local and does not cancel) and the shaft's is the difference.
+    pub fn reduce(&self, system: &RotorSystem) -> RotorSystem {
+        let nonrotating = self.project(&system.stiffness_nonrotating);
+        let m = self.len();
+        RotorSystem {
+            mass: self.project(&system.mass),
+            gyroscopic: self.project(&system.gyroscopic),
+            stiffness_rotating: RMat::from_fn(m, m, |i, j| {
+                let total = if i == j {
+                    self.omega[i] * self.omega[i]
+                } else {
+                    0.0
+                };
+                total - nonrotating[(i, j)]
+            }),
+            stiffness_nonrotating: nonrotating,
+            damping_rotating: self.project(&system.damping_rotating),
+            damping_nonrotating: self.project(&system.damping_nonrotating),
+            hysteretic_rotating: self.project(&system.hysteretic_rotating),
+            hysteretic_nonrotating: self.project(&system.hysteretic_nonrotating),
+            dofs: (0..self.len())
+                .map(|node| Dof {
+                    node,
+                    kind: DofKind::Mode,
+                })
+                .collect(),
+        }
     }
 
     /// `M Phi`: its columns map physical coordinates to modal ones (`eta = (M Phi)^T q`).

@@ -96,6 +96,15 @@ pub fn campbell(r: &CampbellResult) -> api::CampbellResponse {
             .collect(),
         critical_speeds: r.critical_speeds.clone(),
         threshold: r.threshold.as_ref().map(|t| t.speed),
+        reduction: r.reduction.as_ref().map(|d| api::ReductionInfo {
+            modes: d.modes,
+            vectors: d.vectors,
+            band: d.band,
+            states: d.states,
+            full_states: d.full_states,
+            checked_speed: d.checked_speed,
+            max_relative_error: d.max_relative_error,
+        }),
     }
 }
 
@@ -169,6 +178,7 @@ pub fn coordinates(c: &[Coordinate]) -> Vec<api::CoordinateOut> {
                 kind: match d.kind {
                     DofKind::Translation => "translation",
                     DofKind::Rotation => "rotation",
+                    DofKind::Mode => "mode",
                 }
                 .into(),
                 node: Some(d.node),

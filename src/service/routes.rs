@@ -157,10 +157,18 @@ pub fn prepare_campbell(st: &AppState, req: SweepRequest) -> Result<Task, ApiErr
     let (parsed, grid) = validate_sweep(st, &req)?;
     let max_states = st.config.max_states;
     let max_frequency = req.max_frequency.unwrap_or(f64::INFINITY);
+    let reduce = req.modal_reduction.unwrap_or(true);
     Ok(Task::new(move |control| {
-        let (_, model) = build(&parsed, max_states)?;
-        let mut r = analysis::campbell::campbell(&model, grid.as_slice(), control)?;
-        r.keep_below(max_frequency);
+        let (system, model) = build(&parsed, max_states)?;
+        let r = analysis::campbell::campbell_below(
+            &system,
+            &parsed.damping,
+            &model,
+            grid.as_slice(),
+            max_frequency,
+            reduce,
+            control,
+        )?;
         Ok(Output::Campbell(convert::campbell(&r)))
     }))
 }
