@@ -73,8 +73,13 @@ pub fn reduce_for_sweep(
     };
     let mut exact: Option<Vec<c64>> = None;
     while m < n {
-        let sub = basis.augmented(system, m).map_err(DampingError::from)?;
-        let model = DampedModel::build(&sub.reduce(system), damping)?;
+        // A basis or model that cannot be built only means no reduction: solve the full one.
+        let Ok(sub) = basis.augmented(system, m) else {
+            break;
+        };
+        let Ok(model) = DampedModel::build(&sub.reduce(system), damping) else {
+            break;
+        };
         if 2 * model.states() > full.states() {
             break;
         }

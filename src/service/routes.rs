@@ -135,7 +135,9 @@ pub fn prepare_modal(st: &AppState, req: ModalRequest) -> Result<Task, ApiError>
 /// Every rotor branch over the sweep, tracked by mode shape (not by sorting frequencies), with
 /// the forward critical speeds and the threshold of instability in the range. Internal poles
 /// of the nonviscous model are kept out of the branches. A value the model does not define
-/// (hysteretic model near a critical speed) is null.
+/// (hysteretic model near a critical speed) is null. With `max_frequency`, the sweep runs on a
+/// modal reduction where that at least halves the state and reproduces the full model's poles
+/// below the bound to 1e-6 at the fastest speed; `reduction` says so.
 #[utoipa::path(post, path = "/v1/campbell", tag = "analyses", request_body = SweepRequest,
     responses(
         (status = 200, description = "Branches (JSON; the table or the plot by Accept)",
