@@ -196,7 +196,7 @@ fn physical_and_modal_nonviscous_forms_have_the_same_poles() {
     let modal = nonviscous::modal_form(&system, &basis, &spec).unwrap();
     let modal = DampedModel {
         kind: ModelKind::Linear(Box::new(modal)),
-        natural_frequencies: basis.omega.clone(),
+        basis,
     };
     let physical = DampedModel::build(&system, &paper_nvd()).unwrap();
     for speed in [0.0, 1400.0, 3500.0] {

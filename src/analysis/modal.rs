@@ -24,7 +24,7 @@ pub fn modal(
 ) -> Result<ModalResult, AnalysisError> {
     Ok(ModalResult {
         poles: poles_at(model, speed)?,
-        natural_frequencies: model.natural_frequencies.clone(),
+        natural_frequencies: model.basis.omega.clone(),
         states: model.states(),
         dofs: system.dofs.clone(),
     })

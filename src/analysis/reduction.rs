@@ -7,14 +7,17 @@
 //! and each eigenproblem by `((2n + p) / (2m + p))^3`.
 //!
 //! The basis is the modes with `w_k <= 2 w_b` (at least 4) and their static corrections
-//! ([`ModalBasis::augmented`]); the band widens by half until the check passes: at the fastest speed of the sweep (where the gyroscopic coupling of the neglected
-//! modes is largest) every full-model eigenvalue in the box `|Re s|, |Im s| <= w_b` has a
-//! reduced one within [`TOLERANCE`] relative, and the other way round. The measured error is
-//! reported. Reduction is used only where it at least halves the state.
+//! ([`ModalBasis::augmented`]); the band widens by half until the check passes: at the
+//! fastest speed of the sweep (where the gyroscopic coupling of the neglected modes is
+//! largest) every full-model eigenvalue in the box `|Re s|, |Im s| <= w_b` has a reduced one
+//! within [`TOLERANCE`] relative, and the other way round. The measured error is reported.
+//! Reduction is used only where it at least halves the state.
+//!
+//! [`ModalBasis::reduce`]: crate::fem::modal::ModalBasis::reduce
+//! [`ModalBasis::augmented`]: crate::fem::modal::ModalBasis::augmented
 
 use super::AnalysisError;
-use crate::damping::{DampedModel, DampingError, ModelKind};
-use crate::fem::modal::ModalBasis;
+use crate::damping::{DampedModel, ModelKind};
 use crate::linalg::{self, LinalgError, c64};
 use crate::model::damping::DampingModel;
 use crate::system::RotorSystem;
@@ -54,7 +57,7 @@ pub fn reduce_for_sweep(
     if !bound.is_finite() || speeds.is_empty() {
         return Ok(None);
     }
-    let basis = ModalBasis::of(system).map_err(DampingError::from)?;
+    let basis = &full.basis;
     let mut m = basis
         .omega
         .iter()

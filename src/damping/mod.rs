@@ -27,8 +27,9 @@ pub use state::{Branches, SecondOrder, StateModel};
 #[derive(Debug, Clone)]
 pub struct DampedModel {
     pub kind: ModelKind,
-    /// Undamped nonrotating natural frequencies, rad/s, ascending (all modes).
-    pub natural_frequencies: Vec<f64>,
+    /// Undamped nonrotating modes of the rotor (all of them): natural frequencies ascending,
+    /// rad/s, and the basis a modal reduction starts from.
+    pub basis: ModalBasis,
 }
 
 /// The linear problem(s) a damping model poses.
@@ -74,7 +75,6 @@ impl DampedModel {
     /// nonviscous models.
     pub fn build(system: &RotorSystem, model: &DampingModel) -> Result<Self, DampingError> {
         let all = ModalBasis::of(system)?;
-        let natural_frequencies = all.omega.clone();
         let truncated = |modes: Option<usize>| match modes {
             Some(k) => all.truncated(k),
             None => all.clone(),
@@ -98,10 +98,7 @@ impl DampedModel {
                 )?))
             }
         };
-        Ok(DampedModel {
-            kind,
-            natural_frequencies,
-        })
+        Ok(DampedModel { kind, basis: all })
     }
 
     /// Complex degrees of freedom of the rotor (not counting internal coordinates).
