@@ -42,7 +42,7 @@ fn load(name: &str) -> (RotorSystem, DampingModel) {
     let rotor: RotorInput = serde_json::from_value(v["rotor"].clone()).unwrap();
     let rotor = Rotor::parse(&rotor, &Limits::default()).unwrap();
     let damping: DampingInput = serde_json::from_value(v["damping"].clone()).unwrap();
-    let damping = DampingModel::parse(&damping, rotor.dof_count()).unwrap();
+    let damping = DampingModel::parse(&damping, Some(rotor.dof_count())).unwrap();
     (RotorSystem::assemble(&rotor).unwrap(), damping)
 }
 

@@ -3,39 +3,64 @@
 //! - `whirl` serves HTTP on `HOST:PORT` (defaults `0.0.0.0:8080`), settings from the environment;
 //! - `whirl openapi` prints the OpenAPI document (the committed `openapi/openapi.json`);
 //! - `whirl healthcheck` asks `GET /healthz` on `127.0.0.1:PORT` (exit 0 if 200): the container's
-//!   HEALTHCHECK, which needs no curl in the image.
+//!   HEALTHCHECK, which needs no curl in the image;
+//! - `whirl --help`, `whirl --version`.
 
-use std::io::{Read, Write};
+use std::io::{IsTerminal, Read, Write};
 use std::process::ExitCode;
 use std::time::Duration;
 
+use whirl::service::config::SETTINGS;
+use whirl::service::server::{ServerLimits, serve as serve_http};
 use whirl::service::{self, Config};
+
+/// Writes to stdout; a closed pipe (`whirl openapi | head`) ends quietly, not in a panic.
+fn print(text: &str) -> ExitCode {
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("whirl: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn help() -> String {
+    let mut s = format!(
+        "whirl {} - rotordynamics computation service\n\n\
+         usage: whirl [serve|openapi|healthcheck|--help|--version]\n\n\
+         \x20 serve (default)  serve HTTP on HOST:PORT\n\
+         \x20 openapi          print the OpenAPI document\n\
+         \x20 healthcheck      exit 0 if GET /healthz on 127.0.0.1:PORT answers 200\n\n\
+         settings (environment variables, default in brackets):\n",
+        env!("CARGO_PKG_VERSION")
+    );
+    for set in SETTINGS {
+        s.push_str(&format!(
+            "  {} [{}]\n      {}\n",
+            set.var, set.default, set.meaning
+        ));
+    }
+    s
+}
 
 fn main() -> ExitCode {
     let arg = std::env::args().nth(1);
     match arg.as_deref() {
         None | Some("serve") => serve(),
-        Some("openapi") => {
-            match service::openapi_document().to_pretty_json() {
-                Ok(s) => println!("{s}"),
-                Err(e) => {
-                    eprintln!("whirl: {e}");
-                    return ExitCode::FAILURE;
-                }
+        Some("openapi") => match service::openapi_document().to_pretty_json() {
+            Ok(s) => print(&(s + "\n")),
+            Err(e) => {
+                eprintln!("whirl: {e}");
+                ExitCode::FAILURE
             }
-            ExitCode::SUCCESS
-        }
+        },
         Some("healthcheck") => healthcheck(),
-        Some("-h" | "--help" | "help") => {
-            println!(
-                "whirl [serve|openapi|healthcheck]\n\n\
-                 serve (default)  serve HTTP on HOST:PORT (0.0.0.0:8080)\n\
-                 openapi          print the OpenAPI document\n\
-                 healthcheck      exit 0 if GET /healthz on 127.0.0.1:PORT answers 200\n\n\
-                 Environment: HOST, PORT, WHIRL_WORKERS, WHIRL_QUEUE, WHIRL_MAX_BODY_BYTES,\n\
-                 WHIRL_MAX_SPEEDS, WHIRL_LOG_FORMAT (text|json), RUST_LOG (e.g. info)."
-            );
-            ExitCode::SUCCESS
+        Some("-h" | "--help" | "help") => print(&help()),
+        Some("-V" | "--version" | "version") => {
+            print(&format!("whirl {}\n", env!("CARGO_PKG_VERSION")))
         }
         Some(other) => {
             eprintln!("whirl: unknown command {other:?} (try --help)");
@@ -53,6 +78,7 @@ fn serve() -> ExitCode {
         }
     };
     init_tracing(config.log_json);
+    raise_file_limit(config.max_connections);
     let rt = match tokio::runtime::Builder::new_multi_thread()
         .enable_all()
         .build()
@@ -63,14 +89,17 @@ fn serve() -> ExitCode {
             return ExitCode::FAILURE;
         }
     };
-    match rt.block_on(run(config)) {
+    let code = match rt.block_on(run(config)) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             tracing::error!("{e}");
             eprintln!("whirl: {e}");
             ExitCode::FAILURE
         }
-    }
+    };
+    // Analyses still running on blocking threads were cancelled; do not wait for them.
+    rt.shutdown_timeout(Duration::from_secs(1));
+    code
 }
 
 async fn run(config: Config) -> Result<(), String> {
@@ -82,16 +111,28 @@ async fn run(config: Config) -> Result<(), String> {
         %addr,
         workers = config.workers,
         queue = config.queue,
+        memory_budget_mb = config.memory_budget >> 20,
         "whirl listening (docs at /docs, OpenAPI at /openapi.json)"
     );
-    let grace = Duration::from_secs(config.shutdown_grace);
+    let grace = config.shutdown_grace;
+    let limits = ServerLimits::of(&config);
     let (app, state) = service::app_with_state(config);
-    axum::serve(listener, app)
-        .with_graceful_shutdown(shutdown_signal())
-        .await
-        .map_err(|e| e.to_string())?;
-    // No new connections now; jobs get the grace period, then are cancelled with the reason.
-    state.jobs.shutdown(grace).await;
+    let (stop_tx, stop_rx) = tokio::sync::watch::channel(false);
+    tokio::spawn(async move {
+        shutdown_signal().await;
+        let _ = stop_tx.send(true);
+    });
+    let stopped = |mut rx: tokio::sync::watch::Receiver<bool>| async move {
+        let _ = rx.wait_for(|s| *s).await;
+    };
+    // On the signal, the connections drain and the jobs get their grace at the same time:
+    // both are bounded by `grace`, whatever the clients do.
+    let server = serve_http(listener, app, limits, stopped(stop_rx.clone()), grace);
+    let jobs = async {
+        stopped(stop_rx).await;
+        state.jobs.shutdown(grace).await;
+    };
+    tokio::join!(server, jobs);
     tracing::info!("stopped");
     Ok(())
 }
@@ -110,17 +151,47 @@ async fn shutdown_signal() {
     #[cfg(not(unix))]
     let term = std::future::pending::<()>();
     tokio::select! { _ = ctrl_c => {}, _ = term => {} }
-    tracing::info!("shutting down: no new connections, finishing requests in flight");
+    tracing::info!("shutting down: no new connections; requests and jobs get the grace period");
 }
 
+/// Logs go to stderr, coloured only on a terminal.
 fn init_tracing(json: bool) {
     let filter = tracing_subscriber::EnvFilter::try_from_default_env()
-        .unwrap_or_else(|_| tracing_subscriber::EnvFilter::new("info,tower_http=info"));
-    let builder = tracing_subscriber::fmt().with_env_filter(filter);
+        .unwrap_or_else(|_| tracing_subscriber::EnvFilter::new("info"));
+    let builder = tracing_subscriber::fmt()
+        .with_env_filter(filter)
+        .with_writer(std::io::stderr)
+        .with_ansi(std::io::stderr().is_terminal());
     if json {
         builder.json().init();
     } else {
         builder.init();
+    }
+}
+
+/// Raises the open-file limit to its hard maximum, and warns when the connection limit does
+/// not leave room for the rest (the listener, logs, blocking threads).
+fn raise_file_limit(connections: usize) {
+    #[cfg(unix)]
+    // SAFETY: getrlimit/setrlimit write and read only the struct passed.
+    unsafe {
+        let mut lim = libc::rlimit {
+            rlim_cur: 0,
+            rlim_max: 0,
+        };
+        if libc::getrlimit(libc::RLIMIT_NOFILE, &mut lim) == 0 {
+            if lim.rlim_cur < lim.rlim_max {
+                lim.rlim_cur = lim.rlim_max;
+                libc::setrlimit(libc::RLIMIT_NOFILE, &lim);
+            }
+            if (connections as u64).saturating_add(64) > lim.rlim_cur {
+                tracing::warn!(
+                    connections,
+                    open_files = lim.rlim_cur,
+                    "WHIRL_MAX_CONNECTIONS is close to the open-file limit"
+                );
+            }
+        }
     }
 }
 

@@ -173,6 +173,7 @@ fn a_jeffcott_given_as_matrices_has_the_jeffcott_poles() {
 
 async fn problem(body: Value) -> Vec<(String, String)> {
     let req = Request::post("/v1/modal")
+        .header("content-type", "application/json")
         .body(Body::from(body.to_string()))
         .unwrap();
     let resp = app(Config::default()).oneshot(req).await.unwrap();
@@ -293,6 +294,16 @@ async fn beam_validation_names_each_bad_field() {
             beam(
                 steel.clone(),
                 json!([{"length": 1.0, "outer_diameter": 0.05, "material": "steel", "elements": 600}]),
+                json!([]),
+                sup.clone(),
+            ),
+            "rotor.shaft[0].elements",
+        ),
+        (
+            beam(
+                steel.clone(),
+                json!([{"length": 1.0, "outer_diameter": 0.05, "material": "steel", "elements": 400},
+                       {"length": 1.0, "outer_diameter": 0.05, "material": "steel", "elements": 400}]),
                 json!([]),
                 sup.clone(),
             ),

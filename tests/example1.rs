@@ -228,6 +228,7 @@ async fn campbell(file: &str, speeds: Value) -> Value {
     let mut body = example_file(file);
     body["speeds"] = speeds;
     let req = Request::post("/v1/campbell")
+        .header("content-type", "application/json")
         .body(Body::from(body.to_string()))
         .unwrap();
     let resp = app(Config::default()).oneshot(req).await.unwrap();

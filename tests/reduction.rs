@@ -29,7 +29,7 @@ fn compressor(guyan: bool) -> RotorSystem {
 
 fn damping(v: Value, n: usize) -> DampingModel {
     let d: DampingInput = serde_json::from_value(v).unwrap();
-    DampingModel::parse(&d, n).unwrap()
+    DampingModel::parse(&d, Some(n)).unwrap()
 }
 
 fn sweep(system: &RotorSystem, model: &DampingModel, reduce: bool) -> CampbellResult {

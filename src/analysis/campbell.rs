@@ -6,7 +6,7 @@ use super::control::Control;
 use super::poles::Whirl;
 use super::reduction::{Reduction, reduce_for_sweep};
 use super::stability::{Threshold, sweep, threshold};
-use super::tracking::track;
+use super::tracking::Tracker;
 use crate::damping::DampedModel;
 use crate::linalg::c64;
 use crate::model::damping::DampingModel;
@@ -39,8 +39,9 @@ pub fn campbell(
     control: &Control,
 ) -> Result<CampbellResult, AnalysisError> {
     control.expect(super::stability::work(speeds.len()));
-    let sets = sweep(model, speeds, control)?;
-    let tracks = track(&sets, 2 * model.dofs());
+    let mut tracker = Tracker::new(2 * model.dofs());
+    let summaries = sweep(model, speeds, control, |set| tracker.push(set))?;
+    let tracks = tracker.finish();
     let mut branches: Vec<Branch> = tracks
         .into_iter()
         .filter(|t| t.values.iter().any(Option::is_some))
@@ -61,7 +62,7 @@ pub fn campbell(
         .collect();
     number_modes(&mut branches);
     let critical_speeds = critical_speeds(speeds, &branches);
-    let threshold = threshold(model, &sets, control)?;
+    let threshold = threshold(model, &summaries, control)?;
     control.advance(super::stability::work(0));
     Ok(CampbellResult {
         speeds: speeds.to_vec(),

@@ -6,6 +6,7 @@ pub mod control;
 pub mod modal;
 pub mod poles;
 pub mod reduction;
+pub mod run;
 pub mod stability;
 pub mod time;
 pub mod tracking;

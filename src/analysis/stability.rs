@@ -13,6 +13,7 @@ use super::AnalysisError;
 use super::control::Control;
 use super::poles::{Pole, PoleSet, poles_at};
 use crate::damping::DampedModel;
+use crate::model::limits::BATCH_PER_THREAD;
 use rayon::prelude::*;
 
 /// Relative width of the final bracket (the API promises 1e-6).
@@ -27,21 +28,53 @@ pub struct Threshold {
     pub mode: usize,
 }
 
-/// Pole sets over a grid of speeds, computed in parallel (one unit of progress per speed).
+/// What a sweep keeps of each speed: enough to bracket a threshold.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Summary {
+    pub speed: f64,
+    /// `max (sigma - margin |s|)`: > 0 iff a pole is unstable.
+    pub growth: f64,
+    pub max_decay_rate: f64,
+}
+
+impl Summary {
+    fn of(set: &PoleSet) -> Self {
+        Summary {
+            speed: set.speed,
+            growth: set.growth(),
+            max_decay_rate: set.max_decay_rate(),
+        }
+    }
+}
+
+/// Pole sets over a grid of speeds, solved in parallel a batch at a time and handed to
+/// `visit` in order of speed (one unit of progress per speed). Only a batch of pole sets is
+/// alive at once, so the memory of a sweep grows with its speeds only through what `visit`
+/// keeps.
 pub fn sweep(
     model: &DampedModel,
     speeds: &[f64],
     control: &Control,
-) -> Result<Vec<PoleSet>, AnalysisError> {
-    speeds
-        .par_iter()
-        .map(|&w| {
-            control.check()?;
-            let set = poles_at(model, w)?;
-            control.advance(1);
-            Ok(set)
-        })
-        .collect()
+    mut visit: impl FnMut(&PoleSet),
+) -> Result<Vec<Summary>, AnalysisError> {
+    let batch = BATCH_PER_THREAD * rayon::current_num_threads().max(1);
+    let mut out = Vec::with_capacity(speeds.len());
+    for chunk in speeds.chunks(batch) {
+        let sets: Vec<PoleSet> = chunk
+            .par_iter()
+            .map(|&w| {
+                control.check()?;
+                let set = poles_at(model, w)?;
+                control.advance(1);
+                Ok(set)
+            })
+            .collect::<Result<_, AnalysisError>>()?;
+        for set in &sets {
+            out.push(Summary::of(set));
+            visit(set);
+        }
+    }
+    Ok(out)
 }
 
 /// Refinement evaluations counted in the progress (most searches need fewer).
@@ -68,35 +101,39 @@ pub fn stability_curve(
     control: &Control,
 ) -> Result<(Option<Threshold>, Vec<f64>), AnalysisError> {
     control.expect(work(speeds.len()));
-    let sets = sweep(model, speeds, control)?;
-    let t = threshold(model, &sets, control)?;
+    let summaries = sweep(model, speeds, control, |_| {})?;
+    let t = threshold(model, &summaries, control)?;
     control.advance(REFINEMENT_WORK);
-    Ok((t, sets.iter().map(PoleSet::max_decay_rate).collect()))
+    Ok((t, summaries.iter().map(|s| s.max_decay_rate).collect()))
 }
 
-/// Threshold from pole sets already computed on a grid (as a Campbell sweep has them).
+/// Threshold from the summaries of a grid (as a Campbell sweep has them).
 pub fn threshold(
     model: &DampedModel,
-    sets: &[PoleSet],
+    grid: &[Summary],
     control: &Control,
 ) -> Result<Option<Threshold>, AnalysisError> {
-    let Some(first) = sets.iter().position(|s| s.growth() > 0.0) else {
+    let Some(first) = grid.iter().position(|s| s.growth > 0.0) else {
         return Ok(None);
     };
+    let at = |w: f64| -> Result<Threshold, AnalysisError> {
+        control.check()?;
+        Ok(describe(&poles_at(model, w)?))
+    };
     if first == 0 {
-        return Ok(Some(describe(&sets[0])));
+        return at(grid[0].speed).map(Some);
     }
     // A grid point within round-off of the crossing (sigma > 0 by less than the margin) is the
     // threshold itself.
-    if sets[first - 1].max_decay_rate() > 0.0 {
-        return Ok(Some(describe(&sets[first - 1])));
+    if grid[first - 1].max_decay_rate > 0.0 {
+        return at(grid[first - 1].speed).map(Some);
     }
     // Refine the pure decay rate where it brackets too, else the margined growth.
-    let pure = sets[first].max_decay_rate() > 0.0;
-    let f = |s: &PoleSet| if pure { s.max_decay_rate() } else { s.growth() };
-    let (mut lo, mut glo) = (sets[first - 1].speed, f(&sets[first - 1]));
-    let mut hi_set = sets[first].clone();
-    let (mut hi, mut ghi) = (hi_set.speed, f(&hi_set));
+    let pure = grid[first].max_decay_rate > 0.0;
+    let f = |s: &Summary| if pure { s.max_decay_rate } else { s.growth };
+    let (mut lo, mut glo) = (grid[first - 1].speed, f(&grid[first - 1]));
+    let mut hi_set: Option<PoleSet> = None;
+    let (mut hi, mut ghi) = (grid[first].speed, f(&grid[first]));
     // Illinois: halve the retained end's value when the same end is kept twice.
     let mut kept_side = 0i8;
     let mut iterations = 0;
@@ -114,11 +151,11 @@ pub fn threshold(
         }
         control.check()?;
         let set = poles_at(model, x)?;
-        let g = f(&set);
+        let g = f(&Summary::of(&set));
         if g > 0.0 {
             hi = x;
             ghi = g;
-            hi_set = set;
+            hi_set = Some(set);
             if kept_side == -1 {
                 glo *= 0.5;
             }
@@ -133,7 +170,10 @@ pub fn threshold(
         }
         debug_assert!(hi - lo < width);
     }
-    Ok(Some(describe(&hi_set)))
+    match hi_set {
+        Some(set) => Ok(Some(describe(&set))),
+        None => at(hi).map(Some),
+    }
 }
 
 fn describe(set: &PoleSet) -> Threshold {

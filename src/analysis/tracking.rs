@@ -39,12 +39,31 @@ impl State {
     }
 }
 
-/// Tracks the rotor poles of consecutive pole sets into at most `max_branches` branches.
-pub fn track(sets: &[PoleSet], max_branches: usize) -> Vec<Track> {
-    let mut branches: Vec<State> = vec![];
-    for (k, set) in sets.iter().enumerate() {
+/// Follows branches through pole sets given one speed at a time, in order, keeping only each
+/// branch's values and its last shape (a sweep never holds all its pole sets).
+pub struct Tracker {
+    branches: Vec<State>,
+    speeds: usize,
+    max_branches: usize,
+}
+
+impl Tracker {
+    /// A tracker of at most `max_branches` branches.
+    pub fn new(max_branches: usize) -> Self {
+        Tracker {
+            branches: vec![],
+            speeds: 0,
+            max_branches,
+        }
+    }
+
+    /// Assigns the rotor poles of the next speed to branches.
+    pub fn push(&mut self, set: &PoleSet) {
+        let k = self.speeds;
+        self.speeds += 1;
         let speed = set.speed;
         let poles = &set.rotor;
+        let branches = &mut self.branches;
         let mut taken = vec![false; poles.len()];
         let mut assigned: Vec<Option<usize>> = vec![None; branches.len()];
         if !branches.is_empty() && !poles.is_empty() {
@@ -83,7 +102,7 @@ pub fn track(sets: &[PoleSet], max_branches: usize) -> Vec<Track> {
             }
         }
         for (pi, p) in poles.iter().enumerate() {
-            if !taken[pi] && branches.len() < max_branches {
+            if !taken[pi] && branches.len() < self.max_branches {
                 let mut values = vec![None; k];
                 values.push(Some(p.s));
                 branches.push(State {
@@ -95,10 +114,23 @@ pub fn track(sets: &[PoleSet], max_branches: usize) -> Vec<Track> {
             }
         }
     }
-    branches
-        .into_iter()
-        .map(|b| Track { values: b.values })
-        .collect()
+
+    /// The branches.
+    pub fn finish(self) -> Vec<Track> {
+        self.branches
+            .into_iter()
+            .map(|b| Track { values: b.values })
+            .collect()
+    }
+}
+
+/// Tracks the rotor poles of consecutive pole sets into at most `max_branches` branches.
+pub fn track(sets: &[PoleSet], max_branches: usize) -> Vec<Track> {
+    let mut t = Tracker::new(max_branches);
+    for set in sets {
+        t.push(set);
+    }
+    t.finish()
 }
 
 /// Minimum-cost assignment of rows to columns (Hungarian algorithm with potentials,

@@ -28,8 +28,8 @@ pub struct NonviscousSpec {
 }
 
 impl DampingModel {
-    /// Validates the `damping` field; `dofs` bounds `modes`.
-    pub fn parse(input: &DampingInput, dofs: usize) -> Result<Self, Invalid> {
+    /// Validates the `damping` field; `dofs` (when the rotor is valid) bounds `modes`.
+    pub fn parse(input: &DampingInput, dofs: Option<usize>) -> Result<Self, Invalid> {
         match input {
             DampingInput::Viscous(_) => Ok(DampingModel::Viscous),
             DampingInput::Hysteretic(_) => Ok(DampingModel::Hysteretic),
@@ -68,13 +68,15 @@ impl DampingModel {
     }
 }
 
-fn parse_modes(modes: Option<i64>, dofs: usize) -> Result<Option<usize>, String> {
-    match modes {
-        None => Ok(None),
-        Some(k) if k >= 1 && k as u64 <= dofs as u64 => Ok(Some(k as usize)),
-        Some(k) => Err(format!(
-            "must be between 1 and the number of degrees of freedom, {dofs} (got {k})"
+fn parse_modes(modes: Option<i64>, dofs: Option<usize>) -> Result<Option<usize>, String> {
+    match (modes, dofs) {
+        (None, _) => Ok(None),
+        (Some(k), Some(n)) if k >= 1 && k as u64 <= n as u64 => Ok(Some(k as usize)),
+        (Some(k), None) if k >= 1 => Ok(Some(k as usize)),
+        (Some(k), Some(n)) => Err(format!(
+            "must be between 1 and the number of degrees of freedom, {n} (got {k})"
         )),
+        (Some(k), None) => Err(format!("must be >= 1 (got {k})")),
     }
 }
 

@@ -8,20 +8,30 @@ pub struct FieldError {
     pub message: String,
 }
 
-/// A request that does not describe a valid model: every bad field, with its path.
+/// Most field errors kept in one answer; the rest are counted.
+pub const MAX_FIELD_ERRORS: usize = 100;
+
+/// A request that does not describe a valid model: every bad field, with its path (the
+/// first [`MAX_FIELD_ERRORS`] of them, and how many more there were).
 #[derive(Debug, Clone, PartialEq, Default)]
-pub struct Invalid(pub Vec<FieldError>);
+pub struct Invalid {
+    errors: Vec<FieldError>,
+    omitted: usize,
+}
 
 impl Invalid {
     pub fn one(path: impl Into<String>, message: impl Into<String>) -> Self {
-        Self(vec![FieldError {
-            path: path.into(),
-            message: message.into(),
-        }])
+        let mut bad = Self::default();
+        bad.push(path, message);
+        bad
     }
 
     pub fn push(&mut self, path: impl Into<String>, message: impl Into<String>) {
-        self.0.push(FieldError {
+        if self.errors.len() >= MAX_FIELD_ERRORS {
+            self.omitted += 1;
+            return;
+        }
+        self.errors.push(FieldError {
             path: path.into(),
             message: message.into(),
         });
@@ -39,31 +49,58 @@ impl Invalid {
     }
 
     pub fn extend(&mut self, other: Invalid) {
-        self.0.extend(other.0);
+        for e in other.errors {
+            self.push(e.path, e.message);
+        }
+        self.omitted += other.omitted;
     }
 
     pub fn is_empty(&self) -> bool {
-        self.0.is_empty()
+        self.errors.is_empty() && self.omitted == 0
+    }
+
+    /// The errors kept.
+    pub fn errors(&self) -> &[FieldError] {
+        &self.errors
+    }
+
+    /// Every path, prefixed (a job's `input.`).
+    pub fn prefix_paths(&mut self, f: impl Fn(&str) -> String) {
+        for e in &mut self.errors {
+            e.path = f(&e.path);
+        }
+    }
+
+    /// Errors found beyond those kept.
+    pub fn omitted(&self) -> usize {
+        self.omitted
+    }
+
+    /// All errors found.
+    pub fn count(&self) -> usize {
+        self.errors.len() + self.omitted
     }
 
     /// `Ok(v)` when nothing was recorded.
     pub fn into_result<T>(self, v: impl FnOnce() -> T) -> Result<T, Invalid> {
-        if self.0.is_empty() {
-            Ok(v())
-        } else {
-            Err(self)
-        }
+        if self.is_empty() { Ok(v()) } else { Err(self) }
     }
 }
 
 impl std::fmt::Display for Invalid {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let parts: Vec<String> = self
-            .0
+            .errors
             .iter()
+            .take(5)
             .map(|e| format!("{}: {}", e.path, e.message))
             .collect();
-        write!(f, "{}", parts.join("; "))
+        write!(f, "{}", parts.join("; "))?;
+        let rest = self.count() - parts.len();
+        if rest > 0 {
+            write!(f, "; and {rest} more")?;
+        }
+        Ok(())
     }
 }
 

@@ -175,6 +175,84 @@ pub struct Unbalance {
     pub from: f64,
 }
 
+/// Spin speed against time.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SpeedLaw {
+    Constant(f64),
+    Profile(Pwl),
+}
+
+impl SpeedLaw {
+    pub fn omega(&self, t: f64) -> f64 {
+        match self {
+            SpeedLaw::Constant(w) => *w,
+            SpeedLaw::Profile(p) => p.value(t),
+        }
+    }
+
+    /// Angular acceleration; `left`: just before `t`.
+    pub fn accel(&self, t: f64, left: bool) -> f64 {
+        match self {
+            SpeedLaw::Constant(_) => 0.0,
+            SpeedLaw::Profile(p) if left => p.left_slope(t),
+            SpeedLaw::Profile(p) => p.slope(t),
+        }
+    }
+
+    /// Rotation angle `int_0^t Omega`.
+    pub fn angle(&self, t: f64) -> f64 {
+        match self {
+            SpeedLaw::Constant(w) => w * t,
+            SpeedLaw::Profile(p) => p.integral(t),
+        }
+    }
+
+    /// The speed, if it never changes.
+    pub fn constant(&self) -> Option<f64> {
+        match self {
+            SpeedLaw::Constant(w) => Some(*w),
+            SpeedLaw::Profile(p) if p.is_constant() => Some(p.value(0.0)),
+            SpeedLaw::Profile(_) => None,
+        }
+    }
+}
+
+/// A validated time-response problem.
+#[derive(Debug, Clone)]
+pub struct TimeSpec {
+    pub speed: SpeedLaw,
+    pub forces: Vec<Force>,
+    pub unbalances: Vec<Unbalance>,
+    pub duration: f64,
+    pub output_interval: f64,
+    /// Nodes reported.
+    pub nodes: Vec<usize>,
+    /// Relative tolerance of the implicit integrator.
+    pub tolerance: f64,
+    /// Most implicit steps.
+    pub max_steps: usize,
+}
+
+impl TimeSpec {
+    /// Output times `0, dt, 2 dt, ...` up to and including `duration`.
+    pub fn output_times(&self) -> Vec<f64> {
+        (0..sample_count(self.duration, self.output_interval))
+            .map(|k| k as f64 * self.output_interval)
+            .collect()
+    }
+}
+
+/// Samples at `0, dt, 2 dt, ...` up to and including `duration` (saturating: a count to check
+/// against a limit before anything is allocated).
+pub fn sample_count(duration: f64, dt: f64) -> usize {
+    let n = (duration / dt * (1.0 + 1e-12)).floor();
+    if n.is_finite() && n < 1e15 {
+        n as usize + 1
+    } else {
+        usize::MAX
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -214,9 +292,9 @@ mod tests {
     fn bad_histories_are_refused_with_their_index() {
         let mut bad = Invalid::default();
         assert!(Pwl::parse(&[[0.0, 1.0], [-1.0, 2.0]], "h", true, &mut bad).is_none());
-        assert_eq!(bad.0[0].path, "h[1]");
+        assert_eq!(bad.errors()[0].path, "h[1]");
         let mut bad = Invalid::default();
         assert!(Pwl::parse(&[[0.0, 1.0], [1.0, 2.0], [1.0, 3.0]], "s", false, &mut bad).is_none());
-        assert_eq!(bad.0[0].path, "s[2]");
+        assert_eq!(bad.errors()[0].path, "s[2]");
     }
 }

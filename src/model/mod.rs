@@ -7,9 +7,13 @@
 pub mod api;
 pub mod damping;
 pub mod error;
+pub mod limits;
 pub mod loads;
 pub mod rotor;
 pub mod speeds;
 pub mod tagged;
+pub mod task;
 
 pub use error::{FieldError, Invalid};
+pub use limits::{Cost, Limits};
+pub use task::{Model, Task, TaskKind};

@@ -4,18 +4,7 @@ use super::api::{BeamInput, GuyanKeep, JeffcottInput, MatricesInput, RotorInput}
 use super::error::{Invalid, finite, loss_factor, non_negative, positive};
 use crate::linalg::{self, RMat};
 
-/// Size limits of a model (explicit, configurable, enforced at validation).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Limits {
-    /// Most complex degrees of freedom of the assembled rotor, before reduction.
-    pub max_dofs: usize,
-}
-
-impl Default for Limits {
-    fn default() -> Self {
-        Limits { max_dofs: 1000 }
-    }
-}
+pub use super::limits::Limits;
 
 /// A valid rotor.
 #[derive(Debug, Clone)]
@@ -43,6 +32,40 @@ impl Rotor {
             Rotor::Jeffcott(_) => 1,
             Rotor::Beam(b) => b.nodes(),
             Rotor::Matrices(m) => m.mass.nrows(),
+        }
+    }
+
+    /// Complex degrees of freedom as assembled, before any reduction.
+    pub fn assembled_dofs(&self) -> usize {
+        match self {
+            Rotor::Jeffcott(_) => 1,
+            Rotor::Beam(b) => 2 * b.nodes(),
+            Rotor::Matrices(m) => m.mass.nrows(),
+        }
+    }
+
+    /// Whether the rotor has rotating and nonrotating hysteretic loss: which sides get
+    /// nonviscous branches.
+    pub fn loss_sides(&self) -> (bool, bool) {
+        match self {
+            Rotor::Jeffcott(j) => (
+                j.loss_factor_rotating > 0.0,
+                j.loss_factor_nonrotating > 0.0,
+            ),
+            Rotor::Beam(b) => (
+                b.elements.iter().any(|e| e.loss_factor > 0.0),
+                b.supports
+                    .iter()
+                    .any(|s| s.loss_factor > 0.0 && s.stiffness > 0.0),
+            ),
+            Rotor::Matrices(m) => {
+                let nonzero =
+                    |a: &RMat| (0..a.ncols()).any(|j| (0..a.nrows()).any(|i| a[(i, j)] != 0.0));
+                (
+                    nonzero(&m.hysteretic_rotating),
+                    nonzero(&m.hysteretic_nonrotating),
+                )
+            }
         }
     }
 
@@ -146,8 +169,44 @@ impl BeamRotor {
         if b.shaft.is_empty() {
             bad.push("rotor.shaft", "needs at least one segment");
         }
+        // Count the elements first: a body of a few bytes may ask for millions, and nothing
+        // is built until the count is within the limit.
+        let max_elements = (limits.max_dofs / 2).saturating_sub(1).max(1) as u64;
+        let counts: Vec<Option<u64>> = b
+            .shaft
+            .iter()
+            .enumerate()
+            .map(|(i, seg)| match seg.elements {
+                None => Some(1),
+                Some(n) if n >= 1 && n as u64 <= max_elements => Some(n as u64),
+                Some(n) => {
+                    bad.push(
+                        format!("rotor.shaft[{i}].elements"),
+                        format!(
+                            "must be between 1 and {max_elements} (got {n}): each element adds 2 \
+                             degrees of freedom and the limit is {} (WHIRL_MAX_DOFS)",
+                            limits.max_dofs
+                        ),
+                    );
+                    None
+                }
+            })
+            .collect();
+        let element_count: u64 = counts.iter().flatten().sum();
+        let too_many = 2 * (element_count + 1) > limits.max_dofs as u64;
+        if too_many {
+            bad.push(
+                "rotor.shaft",
+                format!(
+                    "{} elements give {} degrees of freedom, more than the limit of {} \
+                     (WHIRL_MAX_DOFS)",
+                    element_count,
+                    2 * (element_count + 1),
+                    limits.max_dofs
+                ),
+            );
+        }
         let mut elements = vec![];
-        let mut element_count: u64 = 0;
         for (i, seg) in b.shaft.iter().enumerate() {
             let at = format!("rotor.shaft[{i}]");
             let length = bad.check(&format!("{at}.length"), positive(seg.length));
@@ -173,17 +232,6 @@ impl BeamRotor {
                     .check(&format!("{at}.shear_factor"), positive(x))
                     .map(Some),
             };
-            let count = match seg.elements {
-                None => Some(1),
-                Some(n) if n >= 1 && (n as u64) <= limits.max_dofs as u64 => Some(n as usize),
-                Some(n) => {
-                    bad.push(
-                        format!("{at}.elements"),
-                        format!("must be between 1 and {} (got {n})", limits.max_dofs),
-                    );
-                    None
-                }
-            };
             let material = materials.get(&seg.material).copied();
             if material.is_none() && !b.materials.contains_key(&seg.material) {
                 let known: Vec<&str> = b.materials.keys().map(String::as_str).collect();
@@ -201,10 +249,10 @@ impl BeamRotor {
                 );
             }
             if let (Some(l), Some(o), Some(i_), Some(sh), Some(n), Some((e, rho, nu, eta))) =
-                (length, outer, inner, shear, count, material)
+                (length, outer, inner, shear, counts[i], material)
                 && i_ < o
+                && !too_many
             {
-                element_count += n as u64;
                 for _ in 0..n {
                     elements.push(ShaftElement {
                         length: l / n as f64,
@@ -219,20 +267,13 @@ impl BeamRotor {
                 }
             }
         }
-        let nodes = elements.len() + 1;
-        if 2 * (element_count + 1) > limits.max_dofs as u64 {
-            bad.push(
-                "rotor.shaft",
-                format!(
-                    "{} elements give {} degrees of freedom, more than the limit of {}                      (WHIRL_MAX_DOFS)",
-                    element_count,
-                    2 * (element_count + 1),
-                    limits.max_dofs
-                ),
-            );
-        }
+        // Nodes as the segments count them, valid or not, so that a bad segment does not
+        // also make every later node look missing.
+        let nodes = element_count as usize + 1;
+        // With a segment's count invalid the nodes are unknown: check only the sign then.
+        let nodes_known = counts.iter().all(Option::is_some) && !too_many;
         let node_ok = |bad: &mut Invalid, at: String, node: i64| -> Option<usize> {
-            if node >= 0 && (node as u64) < nodes as u64 {
+            if node >= 0 && (!nodes_known || (node as u64) < nodes as u64) {
                 Some(node as usize)
             } else {
                 bad.push(

@@ -115,7 +115,13 @@ pub fn unknown<E: Error>(tag: &str, got: &str, variants: &[&str]) -> E {
 }
 
 fn nested<E: Error>(path: &str, msg: String) -> E {
-    E::custom(format!("{MARK}{path}{MARK}{msg}"))
+    E::custom(nested_message(path, &msg))
+}
+
+/// A message that carries the path of a field inside the one being deserialised (see
+/// [`split_nested`]).
+pub fn nested_message(path: &str, msg: &str) -> String {
+    format!("{MARK}{path}{MARK}{msg}")
 }
 
 /// Splits a message made by this module into (inner path, message).

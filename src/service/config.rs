@@ -1,48 +1,184 @@
-//! Settings, from the environment, each with a default that works on a laptop.
+//! Settings, from the environment, each with a default that works on a laptop. [`SETTINGS`]
+//! is the one list: parsing, `whirl --help` and the README's table come from it.
 
-/// Service settings. Every field has an environment variable (see the README).
+use std::time::Duration;
+
+use crate::model::Limits;
+
+/// Service settings. Every field has an environment variable (see [`SETTINGS`]).
 #[derive(Debug, Clone)]
 pub struct Config {
-    /// `HOST` (default `0.0.0.0`).
     pub host: String,
-    /// `PORT` (default 8080).
     pub port: u16,
-    /// `WHIRL_WORKERS`: analyses running at once (default: the number of cores).
+    /// Long analyses running at once.
     pub workers: usize,
-    /// `WHIRL_QUEUE`: analyses waiting for a worker before new ones get 503 (default 64).
+    /// Analyses waiting for a worker before new ones get 503.
     pub queue: usize,
-    /// `WHIRL_MAX_BODY_BYTES`: largest request body (default 8 MiB); larger gets 413.
     pub max_body_bytes: usize,
-    /// `WHIRL_MAX_SPEEDS`: most spin speeds in one sweep (default 2000).
     pub max_speeds: usize,
-    /// `WHIRL_MAX_DOFS`: most complex degrees of freedom of an assembled rotor (default 1000).
     pub max_dofs: usize,
-    /// `WHIRL_MAX_STATES`: largest first-order eigenproblem, internal coordinates included
-    /// (default 1500).
     pub max_states: usize,
-    /// `WHIRL_MAX_SAMPLES`: most output values of a time response, samples times nodes
-    /// (default 2 000 000).
     pub max_samples: usize,
-    /// `WHIRL_MAX_STEPS`: most steps of the implicit integrator (default 500 000).
     pub max_steps: usize,
-    /// `WHIRL_JOB_RETENTION`: seconds a finished job is kept (default 3600).
-    pub job_retention: u64,
-    /// `WHIRL_MAX_FINISHED_JOBS`: most finished jobs kept (default 1000).
+    pub max_response_bytes: u64,
+    /// Heap all running analyses may hold together, by their estimates.
+    pub memory_budget: u64,
+    /// Longest a synchronous analysis may run.
+    pub request_time_limit: Duration,
+    pub job_retention: Duration,
     pub max_finished_jobs: usize,
-    /// `WHIRL_JOB_TIME_LIMIT`: seconds a job may run before it is stopped (default 600).
-    pub job_time_limit: u64,
-    /// `WHIRL_SHUTDOWN_GRACE`: seconds running jobs get to finish on SIGTERM (default 30).
-    pub shutdown_grace: u64,
-    /// `WHIRL_LOG_FORMAT`: `text` (default) or `json`.
+    /// Compressed bytes of finished jobs' results kept.
+    pub job_result_bytes: u64,
+    pub job_time_limit: Duration,
+    pub shutdown_grace: Duration,
+    /// Time to receive a request's headers, and the longest idle keep-alive.
+    pub header_timeout: Duration,
+    /// Time to receive a request's whole body.
+    pub body_timeout: Duration,
+    /// Longest a response write may make no progress.
+    pub write_timeout: Duration,
+    pub max_connections: usize,
     pub log_json: bool,
 }
 
+/// One setting: its variable, its default (as text; `None`: computed) and what it means.
+pub struct Setting {
+    pub var: &'static str,
+    pub default: &'static str,
+    pub meaning: &'static str,
+}
+
+/// Every setting, in the order `--help` lists them.
+pub const SETTINGS: &[Setting] = &[
+    Setting {
+        var: "HOST",
+        default: "0.0.0.0",
+        meaning: "listen address",
+    },
+    Setting {
+        var: "PORT",
+        default: "8080",
+        meaning: "listen port",
+    },
+    Setting {
+        var: "WHIRL_WORKERS",
+        default: "number of cores",
+        meaning: "long analyses running at once (short ones have their own lane)",
+    },
+    Setting {
+        var: "WHIRL_QUEUE",
+        default: "64",
+        meaning: "analyses waiting for a worker; beyond this, 503 with Retry-After",
+    },
+    Setting {
+        var: "WHIRL_MAX_BODY_BYTES",
+        default: "8388608",
+        meaning: "largest request body; beyond it, 413 (from Content-Length, before reading)",
+    },
+    Setting {
+        var: "WHIRL_MAX_SPEEDS",
+        default: "2000",
+        meaning: "most speeds in one sweep",
+    },
+    Setting {
+        var: "WHIRL_MAX_DOFS",
+        default: "1000",
+        meaning: "most complex degrees of freedom of an assembled rotor (before reduction)",
+    },
+    Setting {
+        var: "WHIRL_MAX_STATES",
+        default: "1500",
+        meaning: "largest first-order eigenproblem, internal coordinates included",
+    },
+    Setting {
+        var: "WHIRL_MAX_SAMPLES",
+        default: "2000000",
+        meaning: "most output values of a time response (samples x nodes)",
+    },
+    Setting {
+        var: "WHIRL_MAX_STEPS",
+        default: "500000",
+        meaning: "most steps of the implicit integrator",
+    },
+    Setting {
+        var: "WHIRL_MAX_RESPONSE_BYTES",
+        default: "134217728",
+        meaning: "largest answer (estimated before the analysis runs)",
+    },
+    Setting {
+        var: "WHIRL_MEMORY_BUDGET",
+        default: "half the memory (cgroup limit or RAM)",
+        meaning: "bytes all running analyses may hold by their estimates; beyond it they wait, and one that can never fit is refused (422); accepts K, M, G suffixes",
+    },
+    Setting {
+        var: "WHIRL_REQUEST_TIME_LIMIT",
+        default: "60",
+        meaning: "seconds a synchronous analysis may run before 503 (submit a job instead)",
+    },
+    Setting {
+        var: "WHIRL_JOB_TIME_LIMIT",
+        default: "600",
+        meaning: "seconds a job may run before it is stopped",
+    },
+    Setting {
+        var: "WHIRL_JOB_RETENTION",
+        default: "3600",
+        meaning: "seconds a finished job is kept",
+    },
+    Setting {
+        var: "WHIRL_MAX_FINISHED_JOBS",
+        default: "1000",
+        meaning: "most finished jobs kept",
+    },
+    Setting {
+        var: "WHIRL_JOB_RESULT_BYTES",
+        default: "268435456",
+        meaning: "compressed bytes of finished results kept (oldest forgotten first)",
+    },
+    Setting {
+        var: "WHIRL_SHUTDOWN_GRACE",
+        default: "30",
+        meaning: "seconds running work gets on SIGTERM; the process ends a few seconds later whatever the clients do",
+    },
+    Setting {
+        var: "WHIRL_HEADER_TIMEOUT",
+        default: "10",
+        meaning: "seconds to receive a request's headers; also the longest idle keep-alive",
+    },
+    Setting {
+        var: "WHIRL_BODY_TIMEOUT",
+        default: "30",
+        meaning: "seconds to receive a request's body (408 after)",
+    },
+    Setting {
+        var: "WHIRL_WRITE_TIMEOUT",
+        default: "30",
+        meaning: "seconds a response write may make no progress before the connection is dropped",
+    },
+    Setting {
+        var: "WHIRL_MAX_CONNECTIONS",
+        default: "1024",
+        meaning: "open connections; beyond it new ones get 503 and are closed",
+    },
+    Setting {
+        var: "WHIRL_LOG_FORMAT",
+        default: "text",
+        meaning: "`json` for structured logs (stderr; colours only on a terminal)",
+    },
+    Setting {
+        var: "RUST_LOG",
+        default: "info",
+        meaning: "log filter",
+    },
+];
+
 impl Default for Config {
     fn default() -> Self {
+        let cores = std::thread::available_parallelism().map_or(2, |n| n.get());
         Config {
             host: "0.0.0.0".into(),
             port: 8080,
-            workers: std::thread::available_parallelism().map_or(2, |n| n.get()),
+            workers: cores,
             queue: 64,
             max_body_bytes: 8 * 1024 * 1024,
             max_speeds: 2000,
@@ -50,20 +186,61 @@ impl Default for Config {
             max_states: 1500,
             max_samples: 2_000_000,
             max_steps: 500_000,
-            job_retention: 3600,
+            max_response_bytes: 128 << 20,
+            memory_budget: default_memory_budget(),
+            request_time_limit: Duration::from_secs(60),
+            job_retention: Duration::from_secs(3600),
             max_finished_jobs: 1000,
-            job_time_limit: 600,
-            shutdown_grace: 30,
+            job_result_bytes: 256 << 20,
+            job_time_limit: Duration::from_secs(600),
+            shutdown_grace: Duration::from_secs(30),
+            header_timeout: Duration::from_secs(10),
+            body_timeout: Duration::from_secs(30),
+            write_timeout: Duration::from_secs(30),
+            max_connections: 1024,
             log_json: false,
         }
     }
 }
 
+/// Half of what this process may use: the cgroup's memory limit if it has one (a container),
+/// else the machine's RAM; 4 GiB if neither can be read.
+pub fn default_memory_budget() -> u64 {
+    let cgroup = std::fs::read_to_string("/sys/fs/cgroup/memory.max")
+        .ok()
+        .and_then(|s| s.trim().parse::<u64>().ok());
+    let ram = std::fs::read_to_string("/proc/meminfo").ok().and_then(|s| {
+        s.lines()
+            .find(|l| l.starts_with("MemTotal:"))
+            .and_then(|l| l.split_whitespace().nth(1))
+            .and_then(|kb| kb.parse::<u64>().ok())
+            .map(|kb| kb * 1024)
+    });
+    let total = match (cgroup, ram) {
+        (Some(c), Some(r)) => c.min(r),
+        (Some(c), None) => c,
+        (None, Some(r)) => r,
+        (None, None) => 8 << 30,
+    };
+    total / 2
+}
+
 impl Config {
-    /// The model-size limits validation enforces.
-    pub fn limits(&self) -> crate::model::rotor::Limits {
-        crate::model::rotor::Limits {
+    /// Compute threads one analysis uses.
+    pub fn threads(&self) -> usize {
+        std::thread::available_parallelism().map_or(2, |n| n.get())
+    }
+
+    /// The limits requests are parsed with.
+    pub fn limits(&self) -> Limits {
+        Limits {
             max_dofs: self.max_dofs,
+            max_states: self.max_states,
+            max_speeds: self.max_speeds,
+            max_samples: self.max_samples,
+            max_steps: self.max_steps,
+            max_response_bytes: self.max_response_bytes,
+            threads: self.threads(),
         }
     }
 
@@ -91,6 +268,45 @@ impl Config {
                 },
             }
         }
+        fn seconds(
+            get: &impl Fn(&str) -> Option<String>,
+            key: &str,
+            default: Duration,
+            min: f64,
+        ) -> Result<Duration, String> {
+            match get(key) {
+                None => Ok(default),
+                Some(v) => match v.trim().parse::<f64>() {
+                    Ok(x) if x.is_finite() && x >= min && x < 1e9 => Ok(Duration::from_secs_f64(x)),
+                    _ => Err(format!("{key}={v:?}: expected seconds >= {min}")),
+                },
+            }
+        }
+        let bytes = |key: &str, default: u64| -> Result<u64, String> {
+            let Some(v) = get(key) else {
+                return Ok(default);
+            };
+            let t = v.trim();
+            let (digits, unit) = match t.char_indices().last() {
+                Some((i, c)) if c.is_ascii_alphabetic() => (&t[..i], c.to_ascii_uppercase()),
+                _ => (t, 'B'),
+            };
+            let shift = match unit {
+                'B' => 0,
+                'K' => 10,
+                'M' => 20,
+                'G' => 30,
+                'T' => 40,
+                _ => return Err(format!("{key}={v:?}: expected bytes, e.g. 4G")),
+            };
+            digits
+                .trim()
+                .parse::<u64>()
+                .ok()
+                .and_then(|n| n.checked_mul(1 << shift))
+                .filter(|&n| n >= 1 << 20)
+                .ok_or_else(|| format!("{key}={v:?}: expected bytes >= 1M, e.g. 4G"))
+        };
         let log_json = match get("WHIRL_LOG_FORMAT").as_deref() {
             None | Some("text") => false,
             Some("json") => true,
@@ -105,14 +321,27 @@ impl Config {
             queue: num(&get, "WHIRL_QUEUE", d.queue, 0)?,
             max_body_bytes: num(&get, "WHIRL_MAX_BODY_BYTES", d.max_body_bytes, 1024)?,
             max_speeds: num(&get, "WHIRL_MAX_SPEEDS", d.max_speeds, 2)?,
-            max_dofs: num(&get, "WHIRL_MAX_DOFS", d.max_dofs, 1)?,
+            max_dofs: num(&get, "WHIRL_MAX_DOFS", d.max_dofs, 2)?,
             max_states: num(&get, "WHIRL_MAX_STATES", d.max_states, 2)?,
             max_samples: num(&get, "WHIRL_MAX_SAMPLES", d.max_samples, 2)?,
             max_steps: num(&get, "WHIRL_MAX_STEPS", d.max_steps, 10)?,
-            job_retention: num(&get, "WHIRL_JOB_RETENTION", d.job_retention, 1)?,
+            max_response_bytes: bytes("WHIRL_MAX_RESPONSE_BYTES", d.max_response_bytes)?,
+            memory_budget: bytes("WHIRL_MEMORY_BUDGET", d.memory_budget)?,
+            request_time_limit: seconds(
+                &get,
+                "WHIRL_REQUEST_TIME_LIMIT",
+                d.request_time_limit,
+                0.1,
+            )?,
+            job_retention: seconds(&get, "WHIRL_JOB_RETENTION", d.job_retention, 1.0)?,
             max_finished_jobs: num(&get, "WHIRL_MAX_FINISHED_JOBS", d.max_finished_jobs, 1)?,
-            job_time_limit: num(&get, "WHIRL_JOB_TIME_LIMIT", d.job_time_limit, 1)?,
-            shutdown_grace: num(&get, "WHIRL_SHUTDOWN_GRACE", d.shutdown_grace, 0)?,
+            job_result_bytes: bytes("WHIRL_JOB_RESULT_BYTES", d.job_result_bytes)?,
+            job_time_limit: seconds(&get, "WHIRL_JOB_TIME_LIMIT", d.job_time_limit, 0.1)?,
+            shutdown_grace: seconds(&get, "WHIRL_SHUTDOWN_GRACE", d.shutdown_grace, 0.0)?,
+            header_timeout: seconds(&get, "WHIRL_HEADER_TIMEOUT", d.header_timeout, 0.1)?,
+            body_timeout: seconds(&get, "WHIRL_BODY_TIMEOUT", d.body_timeout, 0.1)?,
+            write_timeout: seconds(&get, "WHIRL_WRITE_TIMEOUT", d.write_timeout, 0.1)?,
+            max_connections: num(&get, "WHIRL_MAX_CONNECTIONS", d.max_connections, 1)?,
             log_json,
         })
     }
@@ -130,5 +359,29 @@ mod tests {
         assert_eq!(c.port, 9000);
         assert!(Config::from_lookup(|k| (k == "WHIRL_WORKERS").then(|| "0".into())).is_err());
         assert!(Config::from_lookup(|k| (k == "PORT").then(|| "http".into())).is_err());
+        let c = Config::from_lookup(|k| (k == "WHIRL_MEMORY_BUDGET").then(|| "3G".into())).unwrap();
+        assert_eq!(c.memory_budget, 3 << 30);
+        let c =
+            Config::from_lookup(|k| (k == "WHIRL_HEADER_TIMEOUT").then(|| "0.5".into())).unwrap();
+        assert_eq!(c.header_timeout, Duration::from_millis(500));
+        assert!(
+            Config::from_lookup(|k| (k == "WHIRL_MEMORY_BUDGET").then(|| "lots".into())).is_err()
+        );
+    }
+
+    #[test]
+    fn every_field_has_a_setting() {
+        // The variables parsed above, each listed once for --help.
+        let vars: Vec<&str> = SETTINGS.iter().map(|s| s.var).collect();
+        for v in [
+            "WHIRL_MEMORY_BUDGET",
+            "WHIRL_REQUEST_TIME_LIMIT",
+            "WHIRL_HEADER_TIMEOUT",
+            "WHIRL_MAX_CONNECTIONS",
+            "WHIRL_JOB_RESULT_BYTES",
+        ] {
+            assert_eq!(vars.iter().filter(|x| **x == v).count(), 1, "{v}");
+        }
+        assert_eq!(vars.len(), 24);
     }
 }

@@ -4,6 +4,7 @@ use axum::http::{HeaderValue, StatusCode, header};
 use axum::response::{IntoResponse, Response};
 
 use crate::analysis::AnalysisError;
+use crate::analysis::run::RunError;
 use crate::model::Invalid;
 use crate::model::api::{Problem, ProblemField};
 
@@ -31,6 +32,14 @@ pub enum ApiError {
     Stopped(String),
     /// 409: the resource is not in a state for this request.
     Conflict(String),
+    /// 415: the body is not declared as JSON.
+    UnsupportedMediaType(String),
+    /// 405, with the methods the path allows.
+    MethodNotAllowed(String),
+    /// 408: the body did not arrive in time.
+    RequestTimeout(std::time::Duration),
+    /// 503: a synchronous analysis ran past its time limit (it was stopped).
+    TimeLimit(std::time::Duration),
 }
 
 impl From<Invalid> for ApiError {
@@ -48,6 +57,16 @@ impl From<AnalysisError> for ApiError {
     }
 }
 
+impl From<RunError> for ApiError {
+    fn from(e: RunError) -> Self {
+        match e {
+            RunError::Invalid(i) => ApiError::Invalid(i),
+            RunError::Unsolvable(d) => ApiError::Unsolvable(d),
+            RunError::Cancelled => ApiError::Cancelled,
+        }
+    }
+}
+
 /// Seconds a client is asked to wait when the queue is full.
 pub const RETRY_AFTER_SECONDS: u32 = 5;
 
@@ -57,7 +76,10 @@ impl ApiError {
             ApiError::Malformed(_) => StatusCode::BAD_REQUEST,
             ApiError::Invalid(_) | ApiError::Unsolvable(_) => StatusCode::UNPROCESSABLE_ENTITY,
             ApiError::TooLarge(_) => StatusCode::PAYLOAD_TOO_LARGE,
-            ApiError::Busy => StatusCode::SERVICE_UNAVAILABLE,
+            ApiError::Busy | ApiError::TimeLimit(_) => StatusCode::SERVICE_UNAVAILABLE,
+            ApiError::UnsupportedMediaType(_) => StatusCode::UNSUPPORTED_MEDIA_TYPE,
+            ApiError::MethodNotAllowed(_) => StatusCode::METHOD_NOT_ALLOWED,
+            ApiError::RequestTimeout(_) => StatusCode::REQUEST_TIMEOUT,
             ApiError::NotFound(_) => StatusCode::NOT_FOUND,
             ApiError::NotAcceptable(_) => StatusCode::NOT_ACCEPTABLE,
             ApiError::Internal(_) => StatusCode::INTERNAL_SERVER_ERROR,
@@ -73,8 +95,16 @@ impl ApiError {
             ApiError::Invalid(inv) => (
                 "invalid-model",
                 "Invalid model",
-                format!("{} invalid field(s): {inv}", inv.0.len()),
-                inv.0
+                format!(
+                    "{} invalid field(s){}: {inv}",
+                    inv.count(),
+                    if inv.omitted() > 0 {
+                        format!(" (the first {} are listed)", inv.errors().len())
+                    } else {
+                        String::new()
+                    }
+                ),
+                inv.errors()
                     .iter()
                     .map(|e| ProblemField {
                         path: e.path.clone(),
@@ -113,6 +143,38 @@ impl ApiError {
             ),
             ApiError::Stopped(d) => ("stopped", "Job stopped", d.clone(), vec![]),
             ApiError::Conflict(d) => ("conflict", "Conflict", d.clone(), vec![]),
+            ApiError::UnsupportedMediaType(d) => (
+                "unsupported-media-type",
+                "Unsupported media type",
+                d.clone(),
+                vec![],
+            ),
+            ApiError::MethodNotAllowed(allow) => (
+                "method-not-allowed",
+                "Method not allowed",
+                format!("this path answers {allow}"),
+                vec![],
+            ),
+            ApiError::RequestTimeout(t) => (
+                "request-timeout",
+                "Request timeout",
+                format!(
+                    "the body did not arrive within {} s (WHIRL_BODY_TIMEOUT)",
+                    t.as_secs_f64()
+                ),
+                vec![],
+            ),
+            ApiError::TimeLimit(t) => (
+                "time-limit",
+                "Analysis time limit",
+                format!(
+                    "the analysis did not finish within {} s (WHIRL_REQUEST_TIME_LIMIT) and was \
+                     stopped; submit it as a job (POST /v1/jobs), which may run longer and can \
+                     be polled",
+                    t.as_secs_f64()
+                ),
+                vec![],
+            ),
         };
         Problem {
             kind: format!("/problems/{kind}"),
@@ -137,8 +199,17 @@ impl IntoResponse for ApiError {
             header::CONTENT_TYPE,
             HeaderValue::from_static("application/problem+json"),
         );
-        if matches!(self, ApiError::Busy) {
+        if matches!(self, ApiError::Busy | ApiError::TimeLimit(_)) {
             h.insert(header::RETRY_AFTER, HeaderValue::from(RETRY_AFTER_SECONDS));
+        }
+        if let ApiError::MethodNotAllowed(allow) = &self
+            && let Ok(v) = HeaderValue::from_str(allow)
+        {
+            h.insert(header::ALLOW, v);
+        }
+        if matches!(self, ApiError::TooLarge(_) | ApiError::RequestTimeout(_)) {
+            // The rest of the body is not read: the connection cannot be reused.
+            h.insert(header::CONNECTION, HeaderValue::from_static("close"));
         }
         resp
     }

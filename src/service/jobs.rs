@@ -2,33 +2,90 @@
 //! cancellation live here.
 //!
 //! A job is validated and admitted to the worker pool when it is submitted (422 and 503 come
-//! at once, never later), so an accepted job always runs. Cancelling a queued job takes effect
-//! at once; a running one stops at its next check (the analyses check between speeds and
-//! every few time steps, well under a second apart). A job that exceeds the time limit is
-//! stopped the same way and fails with the reason. Finished jobs are kept for a time and within
-//! a count, then forgotten (404).
+//! at once, never later), so an accepted job always runs. Cancelling takes effect at once: the
+//! job is recorded as cancelled and its analysis is told to stop, which it does at its next
+//! check (between speeds, samples and time steps); its worker and memory are released then.
+//! A job that exceeds the time limit is stopped the same way and fails with the reason.
+//! Results are kept as gzipped JSON, within a total of compressed bytes, a count and an age;
+//! past those the oldest finished jobs are forgotten (404).
 
 use std::collections::HashMap;
+use std::io::{Read, Write};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
 
+use tokio::sync::Notify;
+
 use super::AppState;
 use super::error::ApiError;
-use super::task::{Output, Task};
+use super::task::{Format, Output, Rendered, execute, render};
 use crate::analysis::control::Control;
+use crate::model::Task;
 use crate::model::api::{JobInfo, JobStatus, Problem};
 
+/// A finished job's result: its JSON, gzipped.
+pub struct Stored {
+    pub analysis: &'static str,
+    pub gzip: Vec<u8>,
+}
+
+impl Stored {
+    fn new(analysis: &'static str, out: &Output) -> Result<Self, ApiError> {
+        let json = serde_json::to_vec(out).map_err(|e| ApiError::Internal(e.to_string()))?;
+        let mut enc = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::fast());
+        enc.write_all(&json)
+            .map_err(|e| ApiError::Internal(e.to_string()))?;
+        let gzip = enc
+            .finish()
+            .map_err(|e| ApiError::Internal(e.to_string()))?;
+        Ok(Stored { analysis, gzip })
+    }
+
+    fn json(&self) -> Result<Vec<u8>, ApiError> {
+        let mut out = vec![];
+        flate2::read::GzDecoder::new(&self.gzip[..])
+            .read_to_end(&mut out)
+            .map_err(|e| ApiError::Internal(format!("stored result: {e}")))?;
+        Ok(out)
+    }
+
+    /// The result in the first acceptable format; the stored gzip itself when the client takes
+    /// gzipped JSON (nothing is rebuilt).
+    pub fn render(&self, formats: &[Format], gzip_ok: bool) -> Result<(Rendered, bool), ApiError> {
+        if formats.first() == Some(&Format::Json) {
+            if gzip_ok {
+                return Ok((
+                    Rendered {
+                        media: Format::Json.media(),
+                        body: self.gzip.clone(),
+                    },
+                    true,
+                ));
+            }
+            return Ok((
+                Rendered {
+                    media: Format::Json.media(),
+                    body: self.json()?,
+                },
+                false,
+            ));
+        }
+        let out = Output::from_json(self.analysis, &self.json()?)?;
+        Ok((render(&out, formats)?, false))
+    }
+}
+
 struct Job {
-    analysis: String,
+    analysis: &'static str,
     status: JobStatus,
     control: Arc<Control>,
+    /// Wakes the job's runner when it is stopped from outside.
+    stop: Arc<Notify>,
     created: SystemTime,
     started: Option<SystemTime>,
     finished: Option<(SystemTime, Instant)>,
-    /// Why it was stopped, if it was (client, time limit, shutdown).
-    stop_reason: Option<(JobStatus, String)>,
     error: Option<Problem>,
-    output: Option<Arc<Output>>,
+    result: Option<Arc<Stored>>,
 }
 
 /// Settings of the job store.
@@ -40,13 +97,22 @@ pub struct JobLimits {
     pub max_finished: usize,
     /// Longest a job may run.
     pub time_limit: Duration,
+    /// Compressed bytes of results kept.
+    pub max_result_bytes: u64,
+    /// Largest answer.
+    pub max_response_bytes: u64,
+}
+
+struct Table {
+    jobs: HashMap<String, Job>,
+    /// Compressed bytes of the results held.
+    stored: u64,
 }
 
 pub struct Jobs {
-    jobs: Mutex<HashMap<String, Job>>,
+    table: Mutex<Table>,
     limits: JobLimits,
     accepting: std::sync::atomic::AtomicBool,
-    counter: std::sync::atomic::AtomicU64,
 }
 
 fn rfc3339(t: SystemTime) -> String {
@@ -75,56 +141,62 @@ fn rfc3339(t: SystemTime) -> String {
 impl Jobs {
     pub fn new(limits: JobLimits) -> Self {
         Jobs {
-            jobs: Mutex::new(HashMap::new()),
+            table: Mutex::new(Table {
+                jobs: HashMap::new(),
+                stored: 0,
+            }),
             limits,
             accepting: std::sync::atomic::AtomicBool::new(true),
-            counter: std::sync::atomic::AtomicU64::new(0),
         }
     }
 
-    fn lock(&self) -> std::sync::MutexGuard<'_, HashMap<String, Job>> {
-        self.jobs.lock().unwrap_or_else(|e| e.into_inner())
+    fn lock(&self) -> std::sync::MutexGuard<'_, Table> {
+        self.table.lock().unwrap_or_else(|e| e.into_inner())
     }
 
+    /// A UUIDv7: unique across restarts and replicas, and ordered by creation time.
     fn new_id(&self) -> String {
-        let n = self
-            .counter
-            .fetch_add(1, std::sync::atomic::Ordering::SeqCst);
-        let nanos = SystemTime::now()
-            .duration_since(UNIX_EPOCH)
-            .unwrap_or_default()
-            .as_nanos();
-        // Unique per process (counter) and unlikely to repeat across restarts (time).
-        let mix = (nanos as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ n.rotate_left(32);
-        format!("{:016x}{:08x}", mix, n as u32)
+        uuid::Uuid::now_v7().to_string()
     }
 
-    /// Forgets finished jobs past retention, then the oldest beyond the count.
-    fn purge(&self, jobs: &mut HashMap<String, Job>) {
+    /// Forgets finished jobs past retention, then the oldest beyond the count and beyond the
+    /// bytes of results.
+    fn purge(&self, t: &mut Table) {
         let now = Instant::now();
-        jobs.retain(|_, j| {
-            j.finished
-                .is_none_or(|(_, at)| now.duration_since(at) < self.limits.retention)
+        let retention = self.limits.retention;
+        let mut freed = 0;
+        t.jobs.retain(|_, j| {
+            let keep = j
+                .finished
+                .is_none_or(|(_, at)| now.duration_since(at) < retention);
+            if !keep {
+                freed += j.result.as_ref().map_or(0, |r| r.gzip.len() as u64);
+            }
+            keep
         });
-        let mut finished: Vec<(Instant, String)> = jobs
+        t.stored -= freed;
+        let mut finished: Vec<(Instant, String)> = t
+            .jobs
             .iter()
             .filter_map(|(id, j)| j.finished.map(|(_, at)| (at, id.clone())))
             .collect();
-        if finished.len() > self.limits.max_finished {
-            finished.sort();
-            for (_, id) in finished
-                .iter()
-                .take(finished.len() - self.limits.max_finished)
-            {
-                jobs.remove(id);
+        finished.sort();
+        let mut count = finished.len();
+        for (_, id) in finished {
+            if count <= self.limits.max_finished && t.stored <= self.limits.max_result_bytes {
+                break;
             }
+            if let Some(j) = t.jobs.remove(&id) {
+                t.stored -= j.result.as_ref().map_or(0, |r| r.gzip.len() as u64);
+            }
+            count -= 1;
         }
     }
 
     fn info(id: &str, j: &Job) -> JobInfo {
         JobInfo {
             id: id.to_string(),
-            analysis: j.analysis.clone(),
+            analysis: j.analysis.to_string(),
             status: j.status,
             progress: match j.status {
                 JobStatus::Succeeded => 1.0,
@@ -139,19 +211,20 @@ impl Jobs {
     }
 
     pub fn get(&self, id: &str) -> Result<JobInfo, ApiError> {
-        let mut jobs = self.lock();
-        self.purge(&mut jobs);
-        jobs.get(id)
+        let mut t = self.lock();
+        self.purge(&mut t);
+        t.jobs
+            .get(id)
             .map(|j| Self::info(id, j))
             .ok_or_else(|| not_found(id))
     }
 
-    /// The output of a succeeded job; 409 otherwise.
-    pub fn result(&self, id: &str) -> Result<Arc<Output>, ApiError> {
-        let mut jobs = self.lock();
-        self.purge(&mut jobs);
-        let j = jobs.get(id).ok_or_else(|| not_found(id))?;
-        match (&j.output, j.status) {
+    /// The result of a succeeded job; 409 otherwise.
+    pub fn result(&self, id: &str) -> Result<Arc<Stored>, ApiError> {
+        let mut t = self.lock();
+        self.purge(&mut t);
+        let j = t.jobs.get(id).ok_or_else(|| not_found(id))?;
+        match (&j.result, j.status) {
             (Some(o), JobStatus::Succeeded) => Ok(o.clone()),
             (_, status) => Err(ApiError::Conflict(format!(
                 "job {id} is {}: its result exists once it has succeeded{}",
@@ -164,34 +237,41 @@ impl Jobs {
         }
     }
 
-    /// Cancels a job: a queued one at once, a running one at its next check.
-    pub fn cancel(&self, id: &str, reason: &str) -> Result<JobInfo, ApiError> {
-        let mut jobs = self.lock();
-        let j = jobs.get_mut(id).ok_or_else(|| not_found(id))?;
+    /// Stops a job at once: it is recorded with `status` and `reason`, its analysis told to
+    /// stop, its runner woken. 409 if it has finished.
+    fn stop(&self, id: &str, status: JobStatus, reason: &str) -> Result<JobInfo, ApiError> {
+        let mut t = self.lock();
+        let j = t.jobs.get_mut(id).ok_or_else(|| not_found(id))?;
         match j.status {
-            JobStatus::Queued => {
+            JobStatus::Queued | JobStatus::Running => {
                 j.control.cancel();
-                j.status = JobStatus::Cancelled;
+                j.stop.notify_one();
+                j.status = status;
                 j.finished = Some((SystemTime::now(), Instant::now()));
                 j.error = Some(stopped(reason));
+                tracing::info!(job = id, analysis = j.analysis, reason, "job stopped");
+                Ok(Self::info(id, j))
             }
-            JobStatus::Running => {
-                j.stop_reason = Some((JobStatus::Cancelled, reason.to_string()));
-                j.control.cancel();
-            }
-            s => {
-                return Err(ApiError::Conflict(format!(
-                    "job {id} has already finished ({})",
-                    status_name(s)
-                )));
-            }
+            s => Err(ApiError::Conflict(format!(
+                "job {id} has already finished ({})",
+                status_name(s)
+            ))),
         }
-        Ok(Self::info(id, j))
+    }
+
+    /// Cancels a job (a client's request).
+    pub fn cancel(&self, id: &str, reason: &str) -> Result<JobInfo, ApiError> {
+        self.stop(id, JobStatus::Cancelled, reason)
+    }
+
+    /// Compressed bytes of the results held.
+    pub fn stored_bytes(&self) -> u64 {
+        self.lock().stored
     }
 
     /// Counts by status, for the metrics.
     pub fn counts(&self) -> [(JobStatus, usize); 5] {
-        let jobs = self.lock();
+        let t = self.lock();
         let mut c = [
             (JobStatus::Queued, 0),
             (JobStatus::Running, 0),
@@ -199,7 +279,7 @@ impl Jobs {
             (JobStatus::Failed, 0),
             (JobStatus::Cancelled, 0),
         ];
-        for j in jobs.values() {
+        for j in t.jobs.values() {
             if let Some(e) = c.iter_mut().find(|e| e.0 == j.status) {
                 e.1 += 1;
             }
@@ -207,61 +287,75 @@ impl Jobs {
         c
     }
 
-    /// Stops taking jobs; lets running ones finish within `grace`, then cancels what is left
-    /// (queued and running) with the reason recorded.
+    /// Stops taking jobs; lets running ones finish within `grace`, then stops what is left
+    /// (queued and running) as cancelled by the shutdown, each logged.
     pub async fn shutdown(&self, grace: Duration) {
         self.accepting
             .store(false, std::sync::atomic::Ordering::SeqCst);
         let deadline = Instant::now() + grace;
-        let busy = |jobs: &Jobs| {
+        let busy = |jobs: &Jobs| -> Vec<String> {
             jobs.lock()
-                .values()
-                .any(|j| matches!(j.status, JobStatus::Queued | JobStatus::Running))
+                .jobs
+                .iter()
+                .filter(|(_, j)| matches!(j.status, JobStatus::Queued | JobStatus::Running))
+                .map(|(id, _)| id.clone())
+                .collect()
         };
-        while busy(self) && Instant::now() < deadline {
+        while !busy(self).is_empty() && Instant::now() < deadline {
             tokio::time::sleep(Duration::from_millis(50)).await;
         }
-        let ids: Vec<String> = self
-            .lock()
-            .iter()
-            .filter(|(_, j)| matches!(j.status, JobStatus::Queued | JobStatus::Running))
-            .map(|(id, _)| id.clone())
-            .collect();
-        for id in ids {
-            let _ = self.cancel(&id, "the server is shutting down");
-        }
-        let deadline = Instant::now() + Duration::from_secs(2);
-        while busy(self) && Instant::now() < deadline {
-            tokio::time::sleep(Duration::from_millis(20)).await;
+        for id in busy(self) {
+            if self
+                .stop(
+                    &id,
+                    JobStatus::Cancelled,
+                    "cancelled: the server is shutting down",
+                )
+                .is_ok()
+            {
+                tracing::warn!(job = %id, "job cancelled by shutdown");
+            }
         }
     }
 
-    fn finish(&self, id: &str, result: Result<Output, ApiError>) {
-        let mut jobs = self.lock();
-        let Some(j) = jobs.get_mut(id) else { return };
-        if j.status == JobStatus::Cancelled {
-            return; // cancelled while queued
+    /// Records how a job's analysis ended, unless it was stopped before.
+    fn finish(&self, id: &str, result: Result<Stored, ApiError>) {
+        let mut t = self.lock();
+        let Some(j) = t.jobs.get_mut(id) else { return };
+        if !matches!(j.status, JobStatus::Queued | JobStatus::Running) {
+            return; // stopped from outside: already recorded
         }
         j.finished = Some((SystemTime::now(), Instant::now()));
+        let mut added = 0;
         match result {
-            Ok(out) => {
+            Ok(stored) if stored.gzip.len() as u64 > self.limits.max_result_bytes => {
+                j.status = JobStatus::Failed;
+                j.error = Some(
+                    ApiError::Unsolvable(format!(
+                        "the result is {} MB compressed, more than the {} MB kept for all jobs \
+                         (WHIRL_JOB_RESULT_BYTES)",
+                        stored.gzip.len().div_ceil(1 << 20),
+                        self.limits.max_result_bytes >> 20
+                    ))
+                    .problem(),
+                );
+            }
+            Ok(stored) => {
                 j.status = JobStatus::Succeeded;
-                j.output = Some(Arc::new(out));
+                added = stored.gzip.len() as u64;
+                j.result = Some(Arc::new(stored));
             }
             Err(ApiError::Cancelled) => {
-                let (status, reason) = j
-                    .stop_reason
-                    .clone()
-                    .unwrap_or((JobStatus::Cancelled, "cancelled".into()));
-                j.status = status;
-                j.error = Some(stopped(&reason));
+                j.status = JobStatus::Cancelled;
+                j.error = Some(stopped("cancelled"));
             }
             Err(e) => {
                 j.status = JobStatus::Failed;
                 j.error = Some(e.problem());
             }
         }
-        self.purge(&mut jobs);
+        t.stored += added;
+        self.purge(&mut t);
     }
 }
 
@@ -284,43 +378,44 @@ pub fn status_name(s: JobStatus) -> &'static str {
 }
 
 /// Admits and starts a job; returns its status (queued).
-pub fn submit(st: &AppState, analysis: &str, task: Task) -> Result<JobInfo, ApiError> {
+pub fn submit(st: &AppState, task: Task) -> Result<JobInfo, ApiError> {
     let jobs = st.jobs.clone();
     if !jobs.accepting.load(std::sync::atomic::Ordering::SeqCst) {
         return Err(ApiError::Busy);
     }
-    let admission = st.pool.admit()?;
+    let admission = st.pool.admit(&task.cost, task.size_field())?;
     let id = jobs.new_id();
+    let analysis = task.name();
     let control = Arc::new(Control::default());
+    let stop = Arc::new(Notify::new());
     let info = {
-        let mut map = jobs.lock();
-        jobs.purge(&mut map);
+        let mut t = jobs.lock();
+        jobs.purge(&mut t);
         let job = Job {
-            analysis: analysis.to_string(),
+            analysis,
             status: JobStatus::Queued,
             control: control.clone(),
+            stop: stop.clone(),
             created: SystemTime::now(),
             started: None,
             finished: None,
-            stop_reason: None,
             error: None,
-            output: None,
+            result: None,
         };
         let info = Jobs::info(&id, &job);
-        map.insert(id.clone(), job);
+        t.jobs.insert(id.clone(), job);
         info
     };
     let pool = st.pool.clone();
     let metrics = st.metrics.clone();
     let limit = jobs.limits.time_limit;
-    let analysis = analysis.to_string();
+    let max_bytes = jobs.limits.max_response_bytes;
     tokio::spawn(async move {
         let start_id = id.clone();
         let start_jobs = jobs.clone();
-        let run_control = control.clone();
         let started = move || {
-            let mut map = start_jobs.lock();
-            if let Some(j) = map.get_mut(&start_id)
+            let mut t = start_jobs.lock();
+            if let Some(j) = t.jobs.get_mut(&start_id)
                 && j.status == JobStatus::Queued
             {
                 j.status = JobStatus::Running;
@@ -328,30 +423,28 @@ pub fn submit(st: &AppState, analysis: &str, task: Task) -> Result<JobInfo, ApiE
             }
         };
         let t0 = Instant::now();
-        let work = pool.run_admitted(admission, started, move || {
-            // Cancelled while it waited: do nothing.
+        let run_control = control.clone();
+        let work = pool.run(admission, started, move || {
+            // Stopped while it waited: do nothing.
             run_control.check().map_err(|_| ApiError::Cancelled)?;
-            task.run(&run_control)
+            let out = execute(&task, &run_control, max_bytes)?;
+            Stored::new(analysis, &out)
         });
-        tokio::pin!(work);
-        let result = tokio::select! {
-            r = &mut work => r,
-            _ = tokio::time::sleep(limit) => {
-                {
-                    let mut map = jobs.lock();
-                    if let Some(j) = map.get_mut(&id) {
-                        j.stop_reason = Some((
-                            JobStatus::Failed,
-                            format!("exceeded the time limit of {} s (WHIRL_JOB_TIME_LIMIT)", limit.as_secs()),
-                        ));
-                    }
-                }
-                control.cancel();
-                work.await
+        tokio::select! {
+            r = work => {
+                metrics.observe_analysis(analysis, t0.elapsed());
+                jobs.finish(&id, r.and_then(|r| r));
             }
-        };
-        metrics.observe_analysis(&analysis, t0.elapsed());
-        jobs.finish(&id, result);
+            _ = tokio::time::sleep(limit) => {
+                let reason = format!(
+                    "exceeded the time limit of {} s (WHIRL_JOB_TIME_LIMIT)",
+                    limit.as_secs_f64()
+                );
+                let _ = jobs.stop(&id, JobStatus::Failed, &reason);
+            }
+            // Cancelled or shut down: recorded by `stop`; the analysis stops at its next check.
+            _ = stop.notified() => {}
+        }
     });
     Ok(info)
 }

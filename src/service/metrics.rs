@@ -49,17 +49,50 @@ impl Metrics {
     }
 }
 
-/// Counts every matched request by method, route template and status.
-pub async fn track(State(st): State<AppState>, req: Request, next: Next) -> Response {
-    let method = req.method().to_string();
+/// The route template a request matched, carried out on its response.
+#[derive(Clone)]
+pub struct Route(pub String);
+
+/// Inside the router: puts the matched route template on the response for [`track`].
+pub async fn label(req: Request, next: Next) -> Response {
     let route = req
         .extensions()
         .get::<MatchedPath>()
-        .map(|p| p.as_str().to_string())
-        .unwrap_or_else(|| "unmatched".into());
+        .map(|p| p.as_str().to_string());
+    let mut resp = next.run(req).await;
+    if let Some(r) = route {
+        resp.extensions_mut().insert(Route(r));
+    }
+    resp
+}
+
+/// A method as a label: the standard ones by name, anything else as `other` (a label set an
+/// attacker can grow is a memory leak).
+fn method_label(m: &axum::http::Method) -> &'static str {
+    use axum::http::Method;
+    match *m {
+        Method::GET => "GET",
+        Method::POST => "POST",
+        Method::DELETE => "DELETE",
+        Method::HEAD => "HEAD",
+        Method::OPTIONS => "OPTIONS",
+        Method::PUT => "PUT",
+        Method::PATCH => "PATCH",
+        _ => "other",
+    }
+}
+
+/// Counts every request by method, route template (`unmatched` for no route) and status.
+pub async fn track(State(st): State<AppState>, req: Request, next: Next) -> Response {
+    let method = method_label(req.method());
     let resp = next.run(req).await;
+    let route = resp
+        .extensions()
+        .get::<Route>()
+        .map_or("unmatched", |r| r.0.as_str())
+        .to_string();
     st.metrics
-        .count_request(&method, &route, resp.status().as_u16());
+        .count_request(method, &route, resp.status().as_u16());
     resp
 }
 
@@ -95,6 +128,23 @@ pub fn render(st: &AppState) -> String {
     s.push_str(&format!(
         "# TYPE whirl_queue_depth gauge\nwhirl_queue_depth {}\n",
         st.pool.in_flight().saturating_sub(running)
+    ));
+    s.push_str(
+        "# HELP whirl_memory_reserved_bytes Heap reserved by running long analyses (estimates).\n",
+    );
+    s.push_str(&format!(
+        "# TYPE whirl_memory_reserved_bytes gauge\nwhirl_memory_reserved_bytes {}\n",
+        st.pool.memory_in_use()
+    ));
+    s.push_str("# HELP whirl_memory_budget_bytes Heap long analyses may reserve.\n");
+    s.push_str(&format!(
+        "# TYPE whirl_memory_budget_bytes gauge\nwhirl_memory_budget_bytes {}\n",
+        st.pool.memory_budget()
+    ));
+    s.push_str("# HELP whirl_job_results_bytes Compressed bytes of finished results held.\n");
+    s.push_str(&format!(
+        "# TYPE whirl_job_results_bytes gauge\nwhirl_job_results_bytes {}\n",
+        st.jobs.stored_bytes()
     ));
     s.push_str("# HELP whirl_analysis_duration_seconds Wall time of analyses.\n");
     s.push_str("# TYPE whirl_analysis_duration_seconds histogram\n");

@@ -14,12 +14,18 @@ pub mod openapi;
 pub mod plot;
 pub mod pool;
 pub mod routes;
+pub mod server;
 pub mod task;
 
 use std::sync::Arc;
+use std::time::Duration;
 
 use axum::Router;
-use axum::extract::DefaultBodyLimit;
+use axum::extract::{DefaultBodyLimit, Request};
+use axum::http::{HeaderValue, StatusCode, header};
+use axum::middleware::Next;
+use axum::response::{IntoResponse, Response};
+use tower_http::compression::CompressionLayer;
 use tower_http::trace::TraceLayer;
 use utoipa_axum::router::OpenApiRouter;
 use utoipa_swagger_ui::SwaggerUi;
@@ -41,12 +47,19 @@ impl AppState {
         // One problem per core: faer stays sequential, sweeps parallelise over speeds.
         crate::linalg::set_sequential();
         let limits = jobs::JobLimits {
-            retention: std::time::Duration::from_secs(config.job_retention),
+            retention: config.job_retention,
             max_finished: config.max_finished_jobs,
-            time_limit: std::time::Duration::from_secs(config.job_time_limit),
+            time_limit: config.job_time_limit,
+            max_result_bytes: config.job_result_bytes,
+            max_response_bytes: config.max_response_bytes,
         };
         AppState {
-            pool: Arc::new(pool::WorkerPool::new(config.workers, config.queue)),
+            pool: Arc::new(pool::WorkerPool::new(
+                config.workers,
+                config.queue,
+                config.threads(),
+                config.memory_budget,
+            )),
             jobs: Arc::new(jobs::Jobs::new(limits)),
             metrics: Arc::new(metrics::Metrics::default()),
             config: Arc::new(config),
@@ -56,7 +69,10 @@ impl AppState {
 
 /// The router with its OpenAPI document (`split_for_parts` keeps them in sync by construction).
 pub fn router(state: AppState) -> (Router, utoipa::openapi::OpenApi) {
-    let body_limit = state.config.max_body_bytes;
+    let limits = json::BodyLimits {
+        max_bytes: state.config.max_body_bytes,
+        timeout: state.config.body_timeout,
+    };
     let (router, api) = OpenApiRouter::with_openapi(openapi::base())
         .routes(utoipa_axum::routes!(routes::healthz))
         .routes(utoipa_axum::routes!(routes::readyz))
@@ -75,37 +91,91 @@ pub fn router(state: AppState) -> (Router, utoipa::openapi::OpenApi) {
     let request_id = axum::http::HeaderName::from_static("x-request-id");
     let router = router
         .merge(SwaggerUi::new("/docs").url("/openapi.json", api.clone()))
-        .route_layer(axum::middleware::from_fn_with_state(state, metrics::track))
+        .route_layer(axum::middleware::from_fn(metrics::label))
         .fallback(routes::not_found)
-        .layer(DefaultBodyLimit::max(body_limit))
-        .layer(axum::Extension(json::BodyLimit(body_limit)))
+        .layer(DefaultBodyLimit::max(limits.max_bytes))
+        .layer(axum::Extension(limits))
+        .layer(axum::middleware::from_fn_with_state(limits, refuse_large_bodies))
+        .layer(axum::middleware::from_fn(method_problems))
+        .layer(axum::middleware::from_fn_with_state(state, metrics::track))
+        .layer(CompressionLayer::new())
         .layer(
-            TraceLayer::new_for_http().make_span_with(|req: &axum::http::Request<_>| {
-                let id = req
-                    .headers()
-                    .get("x-request-id")
-                    .and_then(|v| v.to_str().ok())
-                    .unwrap_or("-");
-                tracing::info_span!("request", method = %req.method(), uri = %req.uri(), request_id = %id)
-            })
-            .on_response(tower_http::trace::DefaultOnResponse::new().level(tracing::Level::INFO)),
+            TraceLayer::new_for_http()
+                .make_span_with(|req: &Request<_>| {
+                    let id = req
+                        .headers()
+                        .get("x-request-id")
+                        .and_then(|v| v.to_str().ok())
+                        .unwrap_or("-");
+                    tracing::info_span!("request", method = %req.method(), uri = %req.uri(), request_id = %id)
+                })
+                .on_response(log_response)
+                .on_failure(()),
         )
         .layer(tower_http::request_id::PropagateRequestIdLayer::new(request_id.clone()))
-        .layer(tower_http::request_id::SetRequestIdLayer::new(request_id, RequestIds::default()));
+        .layer(tower_http::request_id::SetRequestIdLayer::new(request_id, RequestIds));
     (router, api)
 }
 
-/// Request ids `x-request-id` (kept when the client sends one), in logs and responses.
+/// One log line per response, at a level by its status: a 503 is the service shedding load as
+/// designed (a warning), a 500 is a bug (an error).
+fn log_response<B>(resp: &Response<B>, latency: Duration, _: &tracing::Span) {
+    let status = resp.status().as_u16();
+    let ms = latency.as_secs_f64() * 1e3;
+    match status {
+        500..=599 if status != 503 => tracing::error!(status, ms, "response"),
+        503 | 429 => tracing::warn!(status, ms, "response"),
+        _ => tracing::info!(status, ms, "response"),
+    }
+}
+
+/// 413 from `Content-Length` before any of the body is read.
+async fn refuse_large_bodies(
+    axum::extract::State(limits): axum::extract::State<json::BodyLimits>,
+    req: Request,
+    next: Next,
+) -> Response {
+    let announced = req
+        .headers()
+        .get(header::CONTENT_LENGTH)
+        .and_then(|v| v.to_str().ok())
+        .and_then(|v| v.trim().parse::<u64>().ok());
+    if announced.is_some_and(|n| n > limits.max_bytes as u64) {
+        return ApiError::TooLarge(limits.max_bytes).into_response();
+    }
+    next.run(req).await
+}
+
+/// A method the path does not answer (OPTIONS included) is a problem+json 405 with `Allow`.
+async fn method_problems(req: Request, next: Next) -> Response {
+    let resp = next.run(req).await;
+    if resp.status() != StatusCode::METHOD_NOT_ALLOWED {
+        return resp;
+    }
+    let allow = resp
+        .headers()
+        .get(header::ALLOW)
+        .and_then(|v| v.to_str().ok())
+        .unwrap_or("")
+        .to_string();
+    let mut out = ApiError::MethodNotAllowed(allow).into_response();
+    if let Some(route) = resp.extensions().get::<metrics::Route>() {
+        out.extensions_mut().insert(route.clone());
+    }
+    out
+}
+
+/// Request ids `x-request-id` (kept when the client sends one): UUIDv7, unique across
+/// restarts, containers and replicas, and ordered by time.
 #[derive(Clone, Default)]
-struct RequestIds(Arc<std::sync::atomic::AtomicU64>);
+struct RequestIds;
 
 impl tower_http::request_id::MakeRequestId for RequestIds {
     fn make_request_id<B>(
         &mut self,
         _: &axum::http::Request<B>,
     ) -> Option<tower_http::request_id::RequestId> {
-        let n = self.0.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-        axum::http::HeaderValue::from_str(&format!("{:x}-{n}", std::process::id()))
+        HeaderValue::from_str(&uuid::Uuid::now_v7().to_string())
             .ok()
             .map(tower_http::request_id::RequestId::new)
     }

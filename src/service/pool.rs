@@ -1,9 +1,19 @@
-//! The blocking worker pool that runs analyses off the async runtime.
+//! The blocking worker pool that runs analyses off the async runtime, fairly and within a
+//! memory budget.
 //!
-//! At most `workers` analyses run at once (a semaphore in front of `spawn_blocking`), at most
-//! `queue` more wait for a permit; beyond that a request is refused at once with 503 and
-//! `Retry-After` rather than piling up memory. A panic inside an analysis fails that request
-//! with 500 and leaves the server serving.
+//! - **Two lanes.** An analysis whose estimated work is small (about a tenth of a second on
+//!   one core) and whose heap is small runs in the *short* lane: its own permits and a shared
+//!   compute pool at normal priority. Everything else runs in the *long* lane: at most
+//!   `workers` at once, each on a compute pool of its own whose threads run at a lower
+//!   priority (nice 10). Long sweeps then share the cores fairly with each other, and never
+//!   make a short request wait behind them.
+//! - **Memory.** A long analysis holds its estimated peak heap (see `model::limits`) from a
+//!   budget while it runs, and waits when the budget is spent; one that could never fit is
+//!   refused at admission (422). Short analyses are bounded by their lane's count instead.
+//! - **Admission.** At most `workers + queue` analyses are running or waiting; beyond that a
+//!   request is refused at once with 503 and `Retry-After` rather than piling up memory.
+//!
+//! A panic inside an analysis fails that request with 500 and leaves the server serving.
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -11,31 +21,95 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use tokio::sync::Semaphore;
 
 use super::error::ApiError;
+use crate::model::{Cost, Invalid};
+
+/// Work (flops, as estimated) up to which an analysis is short.
+pub const SHORT_WORK: f64 = 1.5e9;
+/// Heap up to which a short analysis needs no share of the budget.
+pub const SHORT_BYTES: u64 = 64 << 20;
+/// Short analyses running at once, per core.
+const SHORT_PER_CORE: usize = 2;
+
+const MIB: u64 = 1 << 20;
+
+/// Which lane an analysis runs in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Lane {
+    Short,
+    Long,
+}
+
+impl Lane {
+    pub fn of(cost: &Cost) -> Self {
+        if cost.work <= SHORT_WORK && cost.peak_bytes <= SHORT_BYTES {
+            Lane::Short
+        } else {
+            Lane::Long
+        }
+    }
+}
 
 pub struct WorkerPool {
-    permits: Arc<Semaphore>,
+    long: Arc<Semaphore>,
+    short: Arc<Semaphore>,
+    /// The memory budget of the long lane, in MiB permits.
+    memory: Arc<Semaphore>,
+    budget_mib: u64,
     in_flight: Arc<AtomicUsize>,
     workers: usize,
     queue: usize,
+    threads: usize,
+    short_pool: Arc<rayon::ThreadPool>,
 }
 
-/// A place in the pool: held from admission until the analysis ends, however it ends (even if
-/// the client goes away), so an admitted analysis is never dropped for lack of room.
-pub struct Admission(Arc<AtomicUsize>);
+/// A place in the pool: held from admission until the analysis ends or is abandoned, so that
+/// the queue bound holds.
+pub struct Admission {
+    _slot: Slot,
+    lane: Lane,
+    mib: u32,
+}
 
-impl Drop for Admission {
+struct Slot(Arc<AtomicUsize>);
+
+impl Drop for Slot {
     fn drop(&mut self) {
         self.0.fetch_sub(1, Ordering::SeqCst);
     }
 }
 
+/// Lowers the calling thread's priority (Linux: nice is per thread).
+fn lower_priority() {
+    #[cfg(target_os = "linux")]
+    // SAFETY: setpriority only reads its integer arguments.
+    unsafe {
+        libc::setpriority(libc::PRIO_PROCESS, 0, 10);
+    }
+}
+
 impl WorkerPool {
-    pub fn new(workers: usize, queue: usize) -> Self {
+    /// `workers` long analyses at once, `queue` more waiting, `threads` compute threads per
+    /// analysis, `memory_budget` bytes for the long lane.
+    pub fn new(workers: usize, queue: usize, threads: usize, memory_budget: u64) -> Self {
+        let short_permits = SHORT_PER_CORE * threads.max(1);
+        // The short lane's worst case is set aside from the budget.
+        let reserved = short_permits as u64 * SHORT_BYTES;
+        let budget_mib = (memory_budget.saturating_sub(reserved) / MIB).max(64);
+        let short_pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads.max(1))
+            .thread_name(|i| format!("whirl-short-{i}"))
+            .build()
+            .expect("a thread pool of a few threads");
         WorkerPool {
-            permits: Arc::new(Semaphore::new(workers)),
+            long: Arc::new(Semaphore::new(workers)),
+            short: Arc::new(Semaphore::new(short_permits)),
+            memory: Arc::new(Semaphore::new(budget_mib as usize)),
+            budget_mib,
             in_flight: Arc::new(AtomicUsize::new(0)),
             workers,
             queue,
+            threads: threads.max(1),
+            short_pool: Arc::new(short_pool),
         }
     }
 
@@ -49,52 +123,103 @@ impl WorkerPool {
         self.in_flight.load(Ordering::SeqCst)
     }
 
-    /// Takes a place, or `Busy` when workers and queue are full.
-    pub fn admit(&self) -> Result<Admission, ApiError> {
+    /// Analyses running now (both lanes).
+    pub fn running(&self) -> usize {
+        self.workers - self.long.available_permits() + SHORT_PER_CORE * self.threads
+            - self.short.available_permits()
+    }
+
+    /// Bytes of the budget held by running long analyses.
+    pub fn memory_in_use(&self) -> u64 {
+        (self.budget_mib - self.memory.available_permits() as u64) * MIB
+    }
+
+    /// The long lane's memory budget, bytes.
+    pub fn memory_budget(&self) -> u64 {
+        self.budget_mib * MIB
+    }
+
+    /// Takes a place for an analysis of this cost: 422 when it could never fit in the memory
+    /// budget (`path`: the field that sizes it), 503 when workers and queue are full.
+    pub fn admit(&self, cost: &Cost, path: &str) -> Result<Admission, ApiError> {
+        let lane = Lane::of(cost);
+        let mib = match lane {
+            Lane::Short => 0,
+            Lane::Long => cost.peak_bytes.div_ceil(MIB).max(1),
+        };
+        if mib > self.budget_mib {
+            return Err(ApiError::Invalid(Invalid::one(
+                path,
+                format!(
+                    "this analysis needs about {} MB, more than the memory budget of {} MB \
+                     (WHIRL_MEMORY_BUDGET): use a smaller model, fewer speeds or samples",
+                    mib, self.budget_mib
+                ),
+            )));
+        }
         let before = self.in_flight.fetch_add(1, Ordering::SeqCst);
-        let admission = Admission(self.in_flight.clone());
+        let slot = Slot(self.in_flight.clone());
         if before >= self.workers + self.queue {
             return Err(ApiError::Busy);
         }
-        Ok(admission)
+        Ok(Admission {
+            _slot: slot,
+            lane,
+            mib: mib as u32,
+        })
     }
 
-    /// Analyses running now.
-    pub fn running(&self) -> usize {
-        self.workers - self.permits.available_permits()
-    }
-
-    /// Runs `f` on a blocking thread once a worker is free.
-    pub async fn run<T, F>(&self, f: F) -> Result<T, ApiError>
-    where
-        T: Send + 'static,
-        F: FnOnce() -> Result<T, ApiError> + Send + 'static,
-    {
-        let admission = self.admit()?;
-        self.run_admitted(admission, || {}, f).await
-    }
-
-    /// Runs an admitted analysis: waits for a worker, calls `started` when it has one, runs `f`.
-    pub async fn run_admitted<T, F>(
+    /// Runs an admitted analysis: waits for its lane and its memory, calls `started`, then runs
+    /// `f` on a blocking thread inside a compute pool (see the module docs). The permits are
+    /// held by the blocking thread: if the caller stops waiting, they are released only when
+    /// `f` returns.
+    pub async fn run<T, F>(
         &self,
-        _admission: Admission,
+        admission: Admission,
         started: impl FnOnce(),
         f: F,
     ) -> Result<T, ApiError>
     where
         T: Send + 'static,
-        F: FnOnce() -> Result<T, ApiError> + Send + 'static,
+        F: FnOnce() -> T + Send + 'static,
     {
-        let permit = self
-            .permits
-            .clone()
-            .acquire_owned()
-            .await
-            .map_err(|_| ApiError::Internal("the worker pool is closed".into()))?;
+        let closed = |_| ApiError::Internal("the worker pool is closed".into());
+        let memory = if admission.mib > 0 {
+            Some(
+                self.memory
+                    .clone()
+                    .acquire_many_owned(admission.mib)
+                    .await
+                    .map_err(closed)?,
+            )
+        } else {
+            None
+        };
+        let lane = match admission.lane {
+            Lane::Short => self.short.clone(),
+            Lane::Long => self.long.clone(),
+        };
+        let permit = lane.acquire_owned().await.map_err(closed)?;
         started();
+        let threads = self.threads;
+        let short = self.short_pool.clone();
+        let kind = admission.lane;
         tokio::task::spawn_blocking(move || {
-            let _permit = permit;
-            f()
+            let _held = (permit, memory, admission);
+            match kind {
+                Lane::Short => short.install(f),
+                Lane::Long => {
+                    let pool = rayon::ThreadPoolBuilder::new()
+                        .num_threads(threads)
+                        .thread_name(|i| format!("whirl-long-{i}"))
+                        .start_handler(|_| lower_priority())
+                        .build();
+                    match pool {
+                        Ok(pool) => pool.install(f),
+                        Err(_) => short.install(f),
+                    }
+                }
+            }
         })
         .await
         .map_err(|e| {
@@ -103,47 +228,78 @@ impl WorkerPool {
             } else {
                 ApiError::Internal("the analysis was cancelled".into())
             }
-        })?
+        })
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::limits::Size;
+
+    fn cost(work: f64, bytes: u64) -> Cost {
+        let size = Size {
+            assembled: 1,
+            dofs: 1,
+            internal: 0,
+            problems: 1,
+        };
+        let mut c = Cost::new(size, 0, 0, 0, 0).with_work(work);
+        c.peak_bytes = bytes;
+        c
+    }
 
     #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
     async fn a_panic_fails_the_request_not_the_pool() {
-        let pool = WorkerPool::new(1, 0);
-        let r: Result<(), ApiError> = pool.run(|| panic!("boom")).await;
+        let pool = WorkerPool::new(1, 0, 1, 1 << 30);
+        let c = cost(1.0, 1);
+        let a = pool.admit(&c, "rotor").unwrap();
+        let r: Result<(), ApiError> = pool.run(a, || {}, || panic!("boom")).await;
         assert!(matches!(r, Err(ApiError::Internal(_))));
-        assert_eq!(pool.run(|| Ok(7)).await.unwrap(), 7);
+        let a = pool.admit(&c, "rotor").unwrap();
+        assert_eq!(pool.run(a, || {}, || 7).await.unwrap(), 7);
         assert_eq!(pool.in_flight(), 0);
+    }
+
+    #[test]
+    fn lanes_and_the_budget() {
+        assert_eq!(Lane::of(&cost(1e6, 1 << 20)), Lane::Short);
+        assert_eq!(Lane::of(&cost(1e12, 1 << 20)), Lane::Long);
+        assert_eq!(Lane::of(&cost(1e6, 1 << 30)), Lane::Long);
+        let pool = WorkerPool::new(2, 2, 2, 2 << 30);
+        assert!(matches!(
+            pool.admit(&cost(1e12, 8 << 30), "rotor"),
+            Err(ApiError::Invalid(_))
+        ));
     }
 
     #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
     async fn a_full_queue_refuses_at_once() {
         let test = async {
-            let pool = Arc::new(WorkerPool::new(1, 1));
+            let pool = Arc::new(WorkerPool::new(1, 1, 1, 1 << 30));
+            let long = cost(1e12, 1 << 20);
             let (tx, rx) = std::sync::mpsc::channel::<()>();
             let p = pool.clone();
+            let a = pool.admit(&long, "rotor").unwrap();
             let running = tokio::spawn(async move {
-                p.run(move || {
-                    rx.recv().ok();
-                    Ok(())
-                })
+                p.run(
+                    a,
+                    || {},
+                    move || {
+                        rx.recv().ok();
+                    },
+                )
                 .await
             });
             // The first analysis holds the only worker before the second one queues.
-            while pool.permits.available_permits() > 0 {
+            while pool.long.available_permits() > 0 {
                 tokio::time::sleep(std::time::Duration::from_millis(1)).await;
             }
             let p = pool.clone();
-            let waiting = tokio::spawn(async move { p.run(|| Ok(())).await });
-            while pool.in_flight() < 2 {
-                tokio::time::sleep(std::time::Duration::from_millis(1)).await;
-            }
+            let a = pool.admit(&long, "rotor").unwrap();
+            let waiting = tokio::spawn(async move { p.run(a, || {}, || ()).await });
             assert!(!pool.ready());
-            assert!(matches!(pool.run(|| Ok(())).await, Err(ApiError::Busy)));
+            assert!(matches!(pool.admit(&long, "rotor"), Err(ApiError::Busy)));
             tx.send(()).unwrap();
             running.await.unwrap().unwrap();
             waiting.await.unwrap().unwrap();
@@ -153,5 +309,44 @@ mod tests {
         tokio::time::timeout(std::time::Duration::from_secs(20), test)
             .await
             .expect("the pool test must not hang");
+    }
+
+    #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+    async fn long_analyses_wait_for_memory() {
+        let pool = Arc::new(WorkerPool::new(4, 4, 1, 1 << 30));
+        let budget = pool.memory_budget();
+        let big = cost(1e12, budget * 3 / 4);
+        let (tx, rx) = std::sync::mpsc::channel::<()>();
+        let a = pool.admit(&big, "rotor").unwrap();
+        let p = pool.clone();
+        let first = tokio::spawn(async move {
+            p.run(
+                a,
+                || {},
+                move || {
+                    rx.recv().ok();
+                },
+            )
+            .await
+        });
+        while pool.memory_in_use() == 0 {
+            tokio::time::sleep(std::time::Duration::from_millis(1)).await;
+        }
+        // A second one does not fit beside the first: it waits, then runs.
+        let a = pool.admit(&big, "rotor").unwrap();
+        let p = pool.clone();
+        let started = Arc::new(std::sync::atomic::AtomicBool::new(false));
+        let s = started.clone();
+        let second = tokio::spawn(async move {
+            p.run(a, move || s.store(true, Ordering::SeqCst), || ())
+                .await
+        });
+        tokio::time::sleep(std::time::Duration::from_millis(100)).await;
+        assert!(!started.load(Ordering::SeqCst));
+        tx.send(()).unwrap();
+        first.await.unwrap().unwrap();
+        second.await.unwrap().unwrap();
+        assert!(started.load(Ordering::SeqCst));
+        assert_eq!(pool.memory_in_use(), 0);
     }
 }

@@ -5,14 +5,20 @@ use axum::http::{HeaderMap, HeaderValue, StatusCode, header};
 use axum::response::{IntoResponse, Response};
 use serde::Serialize;
 
+use std::sync::Arc;
+
 use super::AppState;
+use super::convert;
 use super::error::ApiError;
 use super::plot;
 use crate::analysis::control::Control;
+use crate::analysis::run::{Outcome, run};
+use crate::model::Task;
 use crate::model::api::{
     CampbellResponse, DampingMatricesResponse, ModalResponse, StabilityResponse,
     TimeResponseResponse, UnbalanceResponseResponse,
 };
+use crate::model::limits::BYTES_PER_VALUE;
 
 /// The result of an analysis, as its endpoint returns it.
 #[derive(Debug, Clone, Serialize)]
@@ -26,19 +32,74 @@ pub enum Output {
     Unbalance(UnbalanceResponseResponse),
 }
 
-type Work = Box<dyn FnOnce(&Control) -> Result<Output, ApiError> + Send>;
+impl From<Outcome> for Output {
+    fn from(o: Outcome) -> Self {
+        match o {
+            Outcome::Modal(r) => Output::Modal(convert::modal(&r)),
+            Outcome::Campbell(r) => Output::Campbell(convert::campbell(&r)),
+            Outcome::Stability {
+                threshold,
+                speeds,
+                max_decay_rate,
+            } => Output::Stability(convert::stability(
+                threshold.as_ref(),
+                &speeds,
+                max_decay_rate,
+            )),
+            Outcome::Damping { matrices, model } => {
+                Output::Damping(Box::new(convert::damping_matrices(&matrices, model)))
+            }
+            Outcome::Time(r) => Output::Time(convert::time_response(&r)),
+            Outcome::Unbalance {
+                speeds,
+                nodes,
+                response,
+                model,
+            } => Output::Unbalance(convert::unbalance_response(
+                &speeds, &nodes, &response, model,
+            )),
+        }
+    }
+}
 
-/// A validated analysis, to run on a worker.
-pub struct Task(Work);
-
-impl Task {
-    pub fn new(f: impl FnOnce(&Control) -> Result<Output, ApiError> + Send + 'static) -> Self {
-        Task(Box::new(f))
+impl Output {
+    /// An output read back from its JSON (a stored job result), by its analysis's name.
+    pub fn from_json(analysis: &str, json: &[u8]) -> Result<Self, ApiError> {
+        let bad = |e: serde_json::Error| ApiError::Internal(format!("stored result: {e}"));
+        Ok(match analysis {
+            "modal" => Output::Modal(serde_json::from_slice(json).map_err(bad)?),
+            "campbell" => Output::Campbell(serde_json::from_slice(json).map_err(bad)?),
+            "stability" => Output::Stability(serde_json::from_slice(json).map_err(bad)?),
+            "damping" => Output::Damping(Box::new(serde_json::from_slice(json).map_err(bad)?)),
+            "time-response" => Output::Time(serde_json::from_slice(json).map_err(bad)?),
+            "unbalance-response" => Output::Unbalance(serde_json::from_slice(json).map_err(bad)?),
+            other => return Err(ApiError::Internal(format!("unknown analysis {other}"))),
+        })
     }
 
-    pub fn run(self, control: &Control) -> Result<Output, ApiError> {
-        (self.0)(control)
+    /// Numbers in the answer, where only the analysis knows them (a Campbell sweep below a
+    /// frequency bound); others were bounded when the request was parsed.
+    fn values(&self) -> u64 {
+        match self {
+            Output::Campbell(c) => c.speeds.len() as u64 * (1 + 2 * c.branches.len() as u64),
+            _ => 0,
+        }
     }
+}
+
+/// Runs a task to its output, refusing an answer beyond `max_bytes`.
+pub fn execute(task: &Task, control: &Control, max_bytes: u64) -> Result<Output, ApiError> {
+    let out = Output::from(run(task, control)?);
+    let bytes = out.values() * BYTES_PER_VALUE;
+    if bytes > max_bytes {
+        return Err(ApiError::Unsolvable(format!(
+            "the answer would be about {} MB, more than the limit of {} MB \
+             (WHIRL_MAX_RESPONSE_BYTES): use a lower max_frequency or fewer speeds",
+            bytes.div_ceil(1 << 20),
+            max_bytes >> 20
+        )));
+    }
+    Ok(out)
 }
 
 /// A representation of a result.
@@ -50,7 +111,7 @@ pub enum Format {
 }
 
 impl Format {
-    fn media(self) -> &'static str {
+    pub fn media(self) -> &'static str {
         match self {
             Format::Json => "application/json",
             Format::Csv => "text/csv",
@@ -96,21 +157,87 @@ pub fn negotiate(headers: &HeaderMap) -> Result<Vec<Format>, ApiError> {
     Ok(out)
 }
 
-/// Runs a task on the worker pool and renders its output.
+/// Cancels an analysis when its request is dropped (the client went away) before it answered.
+struct CancelOnDrop {
+    control: Arc<Control>,
+    analysis: &'static str,
+    armed: bool,
+}
+
+impl Drop for CancelOnDrop {
+    fn drop(&mut self) {
+        if self.armed {
+            self.control.cancel();
+            tracing::info!(
+                analysis = self.analysis,
+                "the client went away: analysis cancelled"
+            );
+        }
+    }
+}
+
+/// Runs a task on the worker pool within the request time limit, and renders its output
+/// there too (large answers take time to serialise). The analysis is cancelled when the
+/// client disconnects or the limit passes.
 pub async fn respond(
     st: &AppState,
-    analysis: &str,
     task: Task,
     formats: Vec<Format>,
 ) -> Result<Response, ApiError> {
+    let name = task.name();
+    let admission = st.pool.admit(&task.cost, task.size_field())?;
+    let control = Arc::new(Control::default());
+    let mut guard = CancelOnDrop {
+        control: control.clone(),
+        analysis: name,
+        armed: true,
+    };
+    let c = control.clone();
+    let max_bytes = st.config.max_response_bytes;
     let t0 = std::time::Instant::now();
-    let out = st.pool.run(move || task.run(&Control::default())).await;
-    st.metrics.observe_analysis(analysis, t0.elapsed());
-    render(&out?, &formats)
+    let work = st.pool.run(
+        admission,
+        || {},
+        move || {
+            let out = execute(&task, &c, max_bytes)?;
+            render(&out, &formats)
+        },
+    );
+    let limit = st.config.request_time_limit;
+    let result = tokio::time::timeout(limit, work).await;
+    guard.armed = false;
+    st.metrics.observe_analysis(name, t0.elapsed());
+    match result {
+        Err(_) => {
+            control.cancel();
+            tracing::warn!(
+                analysis = name,
+                limit_s = limit.as_secs_f64(),
+                "time limit: analysis stopped"
+            );
+            Err(ApiError::TimeLimit(limit))
+        }
+        Ok(r) => Ok(r??.into_response()),
+    }
+}
+
+/// A rendered answer: media type and body.
+pub struct Rendered {
+    pub media: &'static str,
+    pub body: Vec<u8>,
+}
+
+impl IntoResponse for Rendered {
+    fn into_response(self) -> Response {
+        let mut resp = (StatusCode::OK, self.body).into_response();
+        resp.headers_mut()
+            .insert(header::CONTENT_TYPE, HeaderValue::from_static(self.media));
+        resp
+    }
 }
 
 /// The output in the first acceptable format it supports (406 if none).
-pub fn render(out: &Output, formats: &[Format]) -> Result<Response, ApiError> {
+pub fn render(out: &Output, formats: &[Format]) -> Result<Rendered, ApiError> {
     for &f in formats {
         let body = match f {
             Format::Json => {
@@ -120,10 +247,10 @@ pub fn render(out: &Output, formats: &[Format]) -> Result<Response, ApiError> {
             Format::Svg => svg(out)?.map(String::into_bytes),
         };
         if let Some(body) = body {
-            let mut resp = (StatusCode::OK, body).into_response();
-            resp.headers_mut()
-                .insert(header::CONTENT_TYPE, HeaderValue::from_static(f.media()));
-            return Ok(resp);
+            return Ok(Rendered {
+                media: f.media(),
+                body,
+            });
         }
     }
     Err(ApiError::NotAcceptable(format!(

@@ -19,74 +19,8 @@ use super::control::{Cancelled, Control};
 use crate::damping::state::StateModel;
 use crate::damping::{DampedModel, ModelKind};
 use crate::linalg::{self, CMat, LinalgError, c64};
-use crate::model::loads::{Force, Pwl, Unbalance};
+pub use crate::model::loads::{SpeedLaw, TimeSpec};
 use crate::system::{DofKind, RotorSystem};
-
-/// Spin speed against time.
-#[derive(Debug, Clone, PartialEq)]
-pub enum SpeedLaw {
-    Constant(f64),
-    Profile(Pwl),
-}
-
-impl SpeedLaw {
-    pub fn omega(&self, t: f64) -> f64 {
-        match self {
-            SpeedLaw::Constant(w) => *w,
-            SpeedLaw::Profile(p) => p.value(t),
-        }
-    }
-
-    /// Angular acceleration; `left`: just before `t`.
-    pub fn accel(&self, t: f64, left: bool) -> f64 {
-        match self {
-            SpeedLaw::Constant(_) => 0.0,
-            SpeedLaw::Profile(p) if left => p.left_slope(t),
-            SpeedLaw::Profile(p) => p.slope(t),
-        }
-    }
-
-    /// Rotation angle `int_0^t Omega`.
-    pub fn angle(&self, t: f64) -> f64 {
-        match self {
-            SpeedLaw::Constant(w) => w * t,
-            SpeedLaw::Profile(p) => p.integral(t),
-        }
-    }
-
-    /// The speed, if it never changes.
-    pub fn constant(&self) -> Option<f64> {
-        match self {
-            SpeedLaw::Constant(w) => Some(*w),
-            SpeedLaw::Profile(p) if p.is_constant() => Some(p.value(0.0)),
-            SpeedLaw::Profile(_) => None,
-        }
-    }
-}
-
-/// A validated time-response problem.
-#[derive(Debug, Clone)]
-pub struct TimeSpec {
-    pub speed: SpeedLaw,
-    pub forces: Vec<Force>,
-    pub unbalances: Vec<Unbalance>,
-    pub duration: f64,
-    pub output_interval: f64,
-    /// Nodes reported.
-    pub nodes: Vec<usize>,
-    /// Relative tolerance of the implicit integrator.
-    pub tolerance: f64,
-    /// Most implicit steps.
-    pub max_steps: usize,
-}
-
-impl TimeSpec {
-    /// Output times `0, dt, 2 dt, ...` up to and including `duration`.
-    pub fn output_times(&self) -> Vec<f64> {
-        let n = (self.duration / self.output_interval * (1.0 + 1e-12)).floor() as usize;
-        (0..=n).map(|k| k as f64 * self.output_interval).collect()
-    }
-}
 
 /// How the response was computed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -1,0 +1,202 @@
+//! Runs a validated task: assemble the rotor, build its damping model, analyse. The one entry
+//! point of the numerics for the service (which converts the outcome to wire types).
+
+use super::AnalysisError;
+use super::campbell::{self, CampbellResult};
+use super::control::Control;
+use super::modal::{self, ModalResult};
+use super::stability::{self, Threshold};
+use super::time::{self, TimeError, TimeResult};
+use super::unbalance::{self, SteadyUnbalance};
+use crate::damping::report::{self, ModelMatrices, ReportError};
+use crate::damping::{DampedModel, DampingError};
+use crate::fem::modal::ModalError;
+use crate::linalg::c64;
+use crate::model::task::{Model, Task, TaskKind};
+use crate::model::{Invalid, rotor::Rotor};
+use crate::system::RotorSystem;
+
+/// What an analysis found, in domain types.
+#[derive(Debug, Clone)]
+pub enum Outcome {
+    Modal(ModalResult),
+    Campbell(CampbellResult),
+    Stability {
+        threshold: Option<Threshold>,
+        speeds: Vec<f64>,
+        max_decay_rate: Vec<f64>,
+    },
+    Damping {
+        matrices: Box<ModelMatrices>,
+        model: &'static str,
+    },
+    Time(TimeResult),
+    Unbalance {
+        speeds: Vec<f64>,
+        nodes: Vec<usize>,
+        /// Complex amplitude of each node at each speed.
+        response: Vec<Vec<c64>>,
+        model: &'static str,
+    },
+}
+
+/// Why a valid request could not be analysed.
+#[derive(Debug, Clone, PartialEq)]
+pub enum RunError {
+    /// The model is invalid in a way only assembly shows (a rotor its supports do not hold).
+    Invalid(Invalid),
+    /// The analysis cannot be carried out on this model; the reason.
+    Unsolvable(String),
+    Cancelled,
+}
+
+impl From<AnalysisError> for RunError {
+    fn from(e: AnalysisError) -> Self {
+        match e {
+            AnalysisError::Cancelled => RunError::Cancelled,
+            e => RunError::Unsolvable(e.to_string()),
+        }
+    }
+}
+
+impl From<TimeError> for RunError {
+    fn from(e: TimeError) -> Self {
+        match e {
+            TimeError::Cancelled => RunError::Cancelled,
+            e => RunError::Unsolvable(e.to_string()),
+        }
+    }
+}
+
+/// A rigid-body rotor is an invalid input (its supports, or its stiffness); anything else is a
+/// model the analysis cannot solve.
+fn damping_error(e: DampingError, rotor: &Rotor) -> RunError {
+    match e {
+        DampingError::Modal(ModalError::RigidBody { .. }) => {
+            let path = match rotor {
+                Rotor::Beam(_) => "rotor.supports",
+                _ => "rotor.stiffness",
+            };
+            RunError::Invalid(Invalid::one(path, e.to_string()))
+        }
+        other => RunError::Unsolvable(other.to_string()),
+    }
+}
+
+fn assemble(model: &Model) -> Result<RotorSystem, RunError> {
+    RotorSystem::assemble(&model.rotor)
+        .map_err(|e| RunError::Unsolvable(format!("the rotor cannot be assembled: {e}")))
+}
+
+/// Assembles the rotor and builds its damping model.
+pub fn build(model: &Model) -> Result<(RotorSystem, DampedModel), RunError> {
+    let system = assemble(model)?;
+    let damped =
+        DampedModel::build(&system, &model.damping).map_err(|e| damping_error(e, &model.rotor))?;
+    Ok((system, damped))
+}
+
+/// Runs `task`, checking `control` for cancellation and counting progress there.
+pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
+    match &task.kind {
+        TaskKind::Modal { model, speed } => {
+            let (system, damped) = build(model)?;
+            Ok(Outcome::Modal(modal::modal(&system, &damped, *speed)?))
+        }
+        TaskKind::Campbell {
+            model,
+            speeds,
+            max_frequency,
+            reduce,
+        } => {
+            let (system, damped) = build(model)?;
+            let r = campbell::campbell_below(
+                &system,
+                &model.damping,
+                &damped,
+                speeds.as_slice(),
+                *max_frequency,
+                *reduce,
+                control,
+            )?;
+            Ok(Outcome::Campbell(r))
+        }
+        TaskKind::Stability { model, speeds } => {
+            let (_, damped) = build(model)?;
+            let (threshold, max_decay_rate) =
+                stability::stability_curve(&damped, speeds.as_slice(), control)?;
+            Ok(Outcome::Stability {
+                threshold,
+                speeds: speeds.as_slice().to_vec(),
+                max_decay_rate,
+            })
+        }
+        TaskKind::Damping {
+            model,
+            state_form,
+            band,
+            max_deviation,
+            max_states,
+        } => {
+            let system = assemble(model)?;
+            let options = report::Options {
+                state_form: *state_form,
+                band: *band,
+                max_deviation: *max_deviation,
+                max_states: *max_states,
+            };
+            let r = report::matrices(&system, &model.damping, &options).map_err(|e| match e {
+                ReportError::Damping(e) => damping_error(e, &model.rotor),
+                e @ ReportError::Unreachable { .. } => {
+                    RunError::Invalid(Invalid::one("fit.max_deviation", e.to_string()))
+                }
+                e @ ReportError::NonFinite => RunError::Unsolvable(e.to_string()),
+                e @ ReportError::TooLarge { .. } => {
+                    RunError::Invalid(Invalid::one("damping", e.to_string()))
+                }
+            })?;
+            Ok(Outcome::Damping {
+                matrices: Box::new(r),
+                model: model.damping.name(),
+            })
+        }
+        TaskKind::Time { model, spec } => {
+            let (system, damped) = build(model)?;
+            Ok(Outcome::Time(time::time_response(
+                &system, &damped, spec, false, control,
+            )?))
+        }
+        TaskKind::Unbalance {
+            model,
+            speeds,
+            unbalances,
+            nodes,
+        } => {
+            let (system, damped) = build(model)?;
+            let dof = |n: usize| time::translation(&system, n);
+            let loads: Vec<SteadyUnbalance> = unbalances
+                .iter()
+                .map(|&(n, amount, phase)| SteadyUnbalance {
+                    dof: dof(n),
+                    amount,
+                    phase,
+                })
+                .collect();
+            let dofs: Vec<usize> = nodes.iter().map(|&n| dof(n)).collect();
+            let response = unbalance::unbalance_response(
+                &system,
+                &damped,
+                speeds.as_slice(),
+                &loads,
+                &dofs,
+                control,
+            )?;
+            Ok(Outcome::Unbalance {
+                speeds: speeds.as_slice().to_vec(),
+                nodes: nodes.clone(),
+                response,
+                model: model.damping.name(),
+            })
+        }
+    }
+}

@@ -1,0 +1,158 @@
+//! What a request may ask for, and what it will cost: computed from the validated input,
+//! before anything proportional to it is allocated.
+//!
+//! Sizes, with `n` the complex degrees of freedom the analysis solves (after Guyan reduction)
+//! and `p` the internal coordinates of the nonviscous model (at most `modes x (m_r + m_n)`
+//! branches, one set per side that has loss):
+//!
+//! - states `S = 2n + p` of each first-order eigenproblem (the hysteretic model solves four);
+//! - a dense complex eigendecomposition holds about `EIGEN_MATRICES` `S x S` complex matrices
+//!   (the matrix, its balanced copy, the Schur factors, the vectors) while it runs, and a
+//!   sweep runs one per compute thread;
+//! - a pole set keeps `(2n + p)` poles with an `n`-entry shape each; sweeps stream them through
+//!   the tracker a batch at a time, so only a batch is alive;
+//! - the answer's size is counted in values, at [`BYTES_PER_VALUE`] bytes of JSON each.
+//!
+//! The estimate is an upper bound of the heap an analysis holds at its peak (checked against a
+//! counting allocator in `tests/limits.rs`); the service admits analyses against a memory
+//! budget with it.
+
+/// Limits of one request (configurable; see the README's table).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Limits {
+    /// Most complex degrees of freedom of the assembled rotor, before reduction.
+    pub max_dofs: usize,
+    /// Largest first-order eigenproblem, internal coordinates included.
+    pub max_states: usize,
+    /// Most spin speeds in a sweep.
+    pub max_speeds: usize,
+    /// Most output values of a time response (samples x nodes).
+    pub max_samples: usize,
+    /// Most steps of the implicit integrator.
+    pub max_steps: usize,
+    /// Largest answer, bytes of JSON (estimated from the number of values).
+    pub max_response_bytes: u64,
+    /// Compute threads one analysis uses (for the memory estimate of parallel sweeps).
+    pub threads: usize,
+}
+
+impl Default for Limits {
+    fn default() -> Self {
+        Limits {
+            max_dofs: 1000,
+            max_states: 1500,
+            max_speeds: 2000,
+            max_samples: 2_000_000,
+            max_steps: 500_000,
+            max_response_bytes: 128 << 20,
+            threads: 2,
+        }
+    }
+}
+
+/// JSON bytes per number in an answer (a full-precision double and its separator).
+pub const BYTES_PER_VALUE: u64 = 24;
+
+/// `S x S` complex matrices alive during one dense eigendecomposition.
+pub const EIGEN_MATRICES: u64 = 8;
+
+/// Pole sets computed ahead of the tracker, per compute thread.
+pub const BATCH_PER_THREAD: usize = 4;
+
+/// Sizes of the model a task solves.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Size {
+    /// Complex degrees of freedom as assembled (before Guyan reduction).
+    pub assembled: usize,
+    /// Complex degrees of freedom solved.
+    pub dofs: usize,
+    /// Internal coordinates (upper bound).
+    pub internal: usize,
+    /// Linear problems per speed (4 for the hysteretic model).
+    pub problems: usize,
+}
+
+impl Size {
+    pub fn states(&self) -> usize {
+        2 * self.dofs + self.internal
+    }
+
+    /// Heap of the assembled rotor, its modal basis and its first-order models.
+    pub fn model_bytes(&self) -> u64 {
+        let (na, n, s) = (
+            self.assembled as u64,
+            self.dofs as u64,
+            self.states() as u64,
+        );
+        // 8 real assembled matrices and Guyan's products; modal basis and second-order form;
+        // A0, A1 per problem and the solve that builds them (n x (4n + p) complex, twice).
+        let assembly = 12 * 8 * na * na;
+        let basis = 16 * 8 * n * n;
+        let second_order = 96 * n * n;
+        let state = self.problems as u64 * 2 * 16 * s * s;
+        let build = 2 * 16 * n * (4 * n + self.internal as u64) + 16 * n * n;
+        assembly + basis + second_order + state + build
+    }
+
+    /// Heap of one dense eigendecomposition of one state matrix.
+    pub fn eigen_bytes(&self) -> u64 {
+        let s = self.states() as u64;
+        EIGEN_MATRICES * 16 * s * s
+    }
+
+    /// Heap of one pole set with shapes.
+    pub fn pole_set_bytes(&self) -> u64 {
+        let (n, s) = (self.dofs as u64, self.states() as u64);
+        s * (n * 16 + 64)
+    }
+
+    /// Rough floating-point work of one eigendecomposition (for scheduling only).
+    pub fn eigen_work(&self) -> f64 {
+        let s = self.states() as f64;
+        self.problems as f64 * 30.0 * s * s * s
+    }
+}
+
+/// What a validated task will cost.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Cost {
+    pub size: Size,
+    /// Upper bound of the heap the analysis holds at its peak, bytes.
+    pub peak_bytes: u64,
+    /// Estimated size of the JSON answer, bytes.
+    pub response_bytes: u64,
+    /// Rough floating-point work (flops), to tell short analyses from long ones.
+    pub work: f64,
+}
+
+impl Cost {
+    /// A cost from the model's size, the eigensolves running at once, the pole sets alive at
+    /// once, the other heap it needs and the number of values it answers.
+    pub fn new(
+        size: Size,
+        concurrent_solves: usize,
+        pole_sets: usize,
+        extra: u64,
+        values: u64,
+    ) -> Self {
+        let response_bytes = values * BYTES_PER_VALUE;
+        // The answer exists twice at the end: as values and as its JSON text.
+        let peak_bytes = size.model_bytes()
+            + concurrent_solves as u64 * size.eigen_bytes()
+            + pole_sets as u64 * size.pole_set_bytes()
+            + extra
+            + values * 16
+            + response_bytes;
+        Cost {
+            size,
+            peak_bytes,
+            response_bytes,
+            work: 0.0,
+        }
+    }
+
+    pub fn with_work(mut self, work: f64) -> Self {
+        self.work = work;
+        self
+    }
+}

@@ -1,0 +1,669 @@
+//! Requests parsed into tasks: one `parse(&Limits)` per request. Every field is checked and
+//! every size the request implies is computed here, from the validated input, before anything
+//! proportional to it is allocated; the service only reads the body, calls `parse`, submits the
+//! task and answers.
+
+use super::api::{
+    AnalysisName, DampingInput, DampingMatricesRequest, MatrixForm, ModalRequest, RotorInput,
+    SweepRequest, TimeResponseRequest, UnbalanceResponseRequest,
+};
+use super::damping::DampingModel;
+use super::error::{Invalid, finite, non_negative, positive};
+use super::limits::{BATCH_PER_THREAD, Cost, Limits, Size};
+use super::loads::{Force, Pwl, SpeedLaw, TimeSpec, Unbalance, sample_count};
+use super::rotor::Rotor;
+use super::speeds::SpeedGrid;
+use crate::damping::nonviscous::BranchSet;
+
+/// A validated rotor and damping model.
+#[derive(Debug, Clone)]
+pub struct Model {
+    pub rotor: Rotor,
+    pub damping: DampingModel,
+}
+
+impl Model {
+    /// Validates rotor and damping together, adding to the errors already found, and checks
+    /// the state size the pair implies.
+    pub fn parse(
+        rotor: &RotorInput,
+        damping: &DampingInput,
+        limits: &Limits,
+        mut bad: Invalid,
+    ) -> Result<Self, Invalid> {
+        let rotor = match Rotor::parse(rotor, limits) {
+            Ok(r) => Some(r),
+            Err(e) => {
+                bad.extend(e);
+                None
+            }
+        };
+        // `modes` is bounded by the rotor's size; without a valid rotor, only from below.
+        let dofs = rotor.as_ref().map(Rotor::dof_count);
+        let damping = match DampingModel::parse(damping, dofs) {
+            Ok(d) => Some(d),
+            Err(e) => {
+                bad.extend(e);
+                None
+            }
+        };
+        let (Some(rotor), Some(damping)) = (rotor, damping) else {
+            return Err(bad);
+        };
+        let model = Model { rotor, damping };
+        model.check_states(limits, &mut bad);
+        bad.into_result(|| model)
+    }
+
+    /// Sizes of the model as solved, with `branches` per nonviscous damper (its own when
+    /// `None`).
+    pub fn size_with(&self, branches: Option<(usize, usize)>) -> Size {
+        let dofs = self.rotor.dof_count();
+        let (rotating, nonrotating) = self.rotor.loss_sides();
+        let (internal, problems) = match &self.damping {
+            DampingModel::Nonviscous(spec) => {
+                let (br, bn) =
+                    branches.unwrap_or((spec.rotating.count(), spec.nonrotating.count()));
+                let modes = spec.modes.unwrap_or(dofs);
+                let per_mode = usize::from(rotating) * br + usize::from(nonrotating) * bn;
+                (modes * per_mode, 1)
+            }
+            DampingModel::Hysteretic => (0, 4),
+            _ => (0, 1),
+        };
+        Size {
+            assembled: self.rotor.assembled_dofs(),
+            dofs,
+            internal,
+            problems,
+        }
+    }
+
+    pub fn size(&self) -> Size {
+        self.size_with(None)
+    }
+
+    fn check_states(&self, limits: &Limits, bad: &mut Invalid) {
+        let size = self.size();
+        let states = size.states();
+        if states <= limits.max_states {
+            return;
+        }
+        if 2 * size.dofs <= limits.max_states {
+            bad.push(
+                "damping",
+                format!(
+                    "the model would have up to {states} states ({} from the rotor, {} from \
+                     the nonviscous branches), more than the limit of {} (WHIRL_MAX_STATES): \
+                     use fewer branches, `modes`, or Guyan reduction",
+                    2 * size.dofs,
+                    size.internal,
+                    limits.max_states
+                ),
+            );
+        } else {
+            bad.push(
+                "rotor",
+                format!(
+                    "the rotor has {} degrees of freedom, {states} states, more than the limit \
+                     of {} (WHIRL_MAX_STATES): use Guyan reduction (`reduction`) or fewer \
+                     elements",
+                    size.dofs, limits.max_states
+                ),
+            );
+        }
+    }
+}
+
+/// A validated analysis and what it will cost.
+#[derive(Debug, Clone)]
+pub struct Task {
+    pub kind: TaskKind,
+    pub cost: Cost,
+}
+
+#[derive(Debug, Clone)]
+pub enum TaskKind {
+    Modal {
+        model: Model,
+        speed: f64,
+    },
+    Campbell {
+        model: Model,
+        speeds: SpeedGrid,
+        /// Branches below this |frequency| (infinite: all).
+        max_frequency: f64,
+        /// Whether a checked modal reduction may be used.
+        reduce: bool,
+    },
+    Stability {
+        model: Model,
+        speeds: SpeedGrid,
+    },
+    Damping {
+        model: Model,
+        state_form: bool,
+        band: Option<[f64; 2]>,
+        max_deviation: Option<f64>,
+        /// The fit may choose no more states than this.
+        max_states: usize,
+    },
+    Time {
+        model: Model,
+        spec: TimeSpec,
+    },
+    Unbalance {
+        model: Model,
+        speeds: SpeedGrid,
+        /// `(node, m e, phase)`.
+        unbalances: Vec<(usize, f64, f64)>,
+        nodes: Vec<usize>,
+    },
+}
+
+impl Task {
+    /// The analysis's name, as in its path.
+    pub fn name(&self) -> &'static str {
+        match &self.kind {
+            TaskKind::Modal { .. } => "modal",
+            TaskKind::Campbell { .. } => "campbell",
+            TaskKind::Stability { .. } => "stability",
+            TaskKind::Damping { .. } => "damping",
+            TaskKind::Time { .. } => "time-response",
+            TaskKind::Unbalance { .. } => "unbalance-response",
+        }
+    }
+
+    pub fn model(&self) -> &Model {
+        match &self.kind {
+            TaskKind::Modal { model, .. }
+            | TaskKind::Campbell { model, .. }
+            | TaskKind::Stability { model, .. }
+            | TaskKind::Damping { model, .. }
+            | TaskKind::Time { model, .. }
+            | TaskKind::Unbalance { model, .. } => model,
+        }
+    }
+
+    /// The field that sizes the task most (for a message about its memory).
+    pub fn size_field(&self) -> &'static str {
+        let size = self.cost.size;
+        let model = size.model_bytes() + 2 * size.eigen_bytes();
+        let rest = self.cost.peak_bytes.saturating_sub(model);
+        match &self.kind {
+            TaskKind::Damping { .. } => "damping",
+            TaskKind::Modal { .. } => "rotor",
+            TaskKind::Time { .. } if rest > model => "output_interval",
+            TaskKind::Campbell { .. } | TaskKind::Stability { .. } | TaskKind::Unbalance { .. }
+                if rest > model =>
+            {
+                "speeds"
+            }
+            _ => "rotor",
+        }
+    }
+
+    /// Refuses a task whose answer would exceed the limit (`path`: the field that sets it).
+    fn bounded(self, limits: &Limits, path: &str) -> Result<Self, Invalid> {
+        if self.cost.response_bytes > limits.max_response_bytes {
+            return Err(Invalid::one(
+                path,
+                format!(
+                    "the answer would be about {} MB, more than the limit of {} MB \
+                     (WHIRL_MAX_RESPONSE_BYTES)",
+                    self.cost.response_bytes.div_ceil(1 << 20),
+                    limits.max_response_bytes >> 20
+                ),
+            ));
+        }
+        Ok(self)
+    }
+}
+
+/// The speeds of a sweep, adding their errors to `bad`.
+fn speeds(
+    input: &super::api::SpeedsInput,
+    limits: &Limits,
+    bad: &mut Invalid,
+) -> Option<SpeedGrid> {
+    match SpeedGrid::parse(input, limits.max_speeds) {
+        Ok(g) => Some(g),
+        Err(e) => {
+            bad.extend(e);
+            None
+        }
+    }
+}
+
+/// Cost of a sweep of `speeds` pole sets solved in parallel and streamed through the tracker,
+/// answering `values` numbers.
+fn sweep_cost(size: Size, speeds: usize, limits: &Limits, tracked: bool, values: u64) -> Cost {
+    let threads = limits.threads.max(1);
+    let batch = BATCH_PER_THREAD * threads;
+    // Tracker: every branch's poles over the sweep and its last shape.
+    let branches = 2 * size.dofs as u64;
+    let tracker = if tracked {
+        branches * (speeds as u64 * 16 + size.dofs as u64 * 16 + 64)
+    } else {
+        0
+    };
+    let summaries = speeds as u64 * 64;
+    Cost::new(size, threads, batch + 2, tracker + summaries, values)
+        .with_work(size.eigen_work() * (speeds as f64 + 20.0))
+}
+
+impl ModalRequest {
+    pub fn parse(&self, limits: &Limits) -> Result<Task, Invalid> {
+        let mut bad = Invalid::default();
+        let speed = bad.check("speed", non_negative(self.speed));
+        let model = Model::parse(&self.rotor, &self.damping, limits, bad)?;
+        let size = model.size();
+        let n = size.dofs as u64;
+        let values = size.states() as u64 * 5 + 2 * n * model.rotor.node_count() as u64 * 3 + n;
+        let cost = Cost::new(size, 1, 1, 0, values).with_work(size.eigen_work());
+        Task {
+            kind: TaskKind::Modal {
+                model,
+                speed: speed.expect("validated"),
+            },
+            cost,
+        }
+        .bounded(limits, "rotor")
+    }
+}
+
+impl SweepRequest {
+    fn parse_sweep(&self, limits: &Limits) -> Result<(Model, SpeedGrid), Invalid> {
+        let mut bad = Invalid::default();
+        if let Some(f) = self.max_frequency
+            && !(f.is_finite() && f > 0.0)
+        {
+            bad.push("max_frequency", format!("must be a number > 0 (got {f})"));
+        }
+        let grid = speeds(&self.speeds, limits, &mut bad);
+        let model = Model::parse(&self.rotor, &self.damping, limits, bad)?;
+        Ok((model, grid.expect("validated")))
+    }
+
+    /// `POST /v1/campbell`.
+    pub fn parse_campbell(&self, limits: &Limits) -> Result<Task, Invalid> {
+        let (model, speeds) = self.parse_sweep(limits)?;
+        let size = model.size();
+        let count = speeds.as_slice().len();
+        // At most 2n branches; with `max_frequency` fewer, known only after the solve.
+        let values = count as u64 * (1 + 4 * size.dofs as u64);
+        let cost = sweep_cost(size, count, limits, true, values);
+        let bounded = self.max_frequency.is_none();
+        let task = Task {
+            kind: TaskKind::Campbell {
+                model,
+                speeds,
+                max_frequency: self.max_frequency.unwrap_or(f64::INFINITY),
+                reduce: self.modal_reduction.unwrap_or(true),
+            },
+            cost,
+        };
+        if bounded {
+            task.bounded(limits, "speeds")
+        } else {
+            Ok(task)
+        }
+    }
+
+    /// `POST /v1/stability`.
+    pub fn parse_stability(&self, limits: &Limits) -> Result<Task, Invalid> {
+        let (model, speeds) = self.parse_sweep(limits)?;
+        let size = model.size();
+        let count = speeds.as_slice().len();
+        let cost = sweep_cost(size, count, limits, false, 2 * count as u64 + 8);
+        Ok(Task {
+            kind: TaskKind::Stability { model, speeds },
+            cost,
+        })
+    }
+}
+
+impl DampingMatricesRequest {
+    pub fn parse(&self, limits: &Limits) -> Result<Task, Invalid> {
+        let mut bad = Invalid::default();
+        let fit = self.fit.clone().unwrap_or_default();
+        let band = match fit.band {
+            Some([lo, hi]) if lo.is_finite() && hi.is_finite() && lo > 0.0 && hi > lo => {
+                Some([lo, hi])
+            }
+            Some(b) => {
+                bad.push(
+                    "fit.band",
+                    format!("must be [low, high] with 0 < low < high (got {b:?})"),
+                );
+                None
+            }
+            None => None,
+        };
+        let auto = match fit.max_deviation {
+            None => None,
+            Some(d) if d.is_finite() && d > 0.0 => Some(d),
+            Some(d) => {
+                bad.push(
+                    "fit.max_deviation",
+                    format!("must be a number > 0 (got {d})"),
+                );
+                None
+            }
+        };
+        if auto.is_some() {
+            match &self.damping {
+                DampingInput::Nonviscous(nv) => {
+                    for (side, b) in [("rotating", &nv.rotating), ("nonrotating", &nv.nonrotating)]
+                    {
+                        if let Some(b) = b
+                            && (b.branches.is_some() || b.nu.is_some())
+                        {
+                            bad.push(
+                                format!("damping.{side}"),
+                                "fit.max_deviation chooses the number of branches: omit \
+                                 `branches` and `nu`",
+                            );
+                        }
+                    }
+                    if fit.band.is_none() {
+                        bad.push("fit.band", "needed with fit.max_deviation");
+                    }
+                }
+                _ => bad.push("fit.max_deviation", "applies to the nonviscous model only"),
+            }
+        }
+        let model = Model::parse(&self.rotor, &self.damping, limits, bad)?;
+        if matches!(
+            model.damping,
+            DampingModel::Viscous | DampingModel::Hysteretic
+        ) {
+            return Err(Invalid::one(
+                "damping.model",
+                format!(
+                    "`{}` adds no matrices: this endpoint returns the `equivalent` or \
+                     `nonviscous` model (hysteretic damping has no time-domain form; nonviscous \
+                     is its time-domain model)",
+                    model.damping.name()
+                ),
+            ));
+        }
+        let state_form = self.form == Some(MatrixForm::State);
+        // With an automatic fit the branches are chosen later (the fit refuses more states
+        // than the limit before building); the memory is bounded by the most it may choose.
+        let size = if auto.is_some() {
+            let most = BranchSet::MAX_BRANCHES;
+            let s = model.size_with(Some((most, most)));
+            let cap = limits.max_states.saturating_sub(2 * s.dofs);
+            Size {
+                internal: s.internal.min(cap),
+                ..s
+            }
+        } else {
+            model.size()
+        };
+        let q = (size.dofs + size.internal) as u64;
+        let s = size.states() as u64;
+        let mut values = 5 * q * q + q * 8;
+        if state_form {
+            values += 4 * s * s + s * size.dofs as u64;
+        }
+        let extra = 5 * 8 * q * q
+            + if state_form {
+                16 * s * size.dofs as u64
+            } else {
+                0
+            };
+        let cost = Cost::new(size, 0, 0, extra, values).with_work(size.eigen_work() / 10.0);
+        Task {
+            kind: TaskKind::Damping {
+                model,
+                state_form,
+                band,
+                max_deviation: auto,
+                max_states: limits.max_states,
+            },
+            cost,
+        }
+        .bounded(limits, "damping")
+    }
+}
+
+/// A node of a rotor with `nodes` nodes, or the error at `at`.
+fn node_index(bad: &mut Invalid, at: String, k: i64, nodes: usize) -> Option<usize> {
+    if k >= 0 && (k as u64) < nodes as u64 {
+        Some(k as usize)
+    } else {
+        bad.push(
+            at,
+            format!("node {k} does not exist (nodes 0 to {})", nodes - 1),
+        );
+        None
+    }
+}
+
+/// The nodes to report: the requested ones (validated) or all.
+fn report_nodes(bad: &mut Invalid, requested: &Option<Vec<i64>>, nodes: usize) -> Vec<usize> {
+    match requested {
+        None => (0..nodes).collect(),
+        Some(list) => {
+            if list.is_empty() {
+                bad.push("nodes", "needs at least one node (or omit it for all)");
+            }
+            list.iter()
+                .enumerate()
+                .filter_map(|(i, &k)| node_index(bad, format!("nodes[{i}]"), k, nodes))
+                .collect()
+        }
+    }
+}
+
+impl TimeResponseRequest {
+    pub fn parse(&self, limits: &Limits) -> Result<Task, Invalid> {
+        let mut bad = Invalid::default();
+        if matches!(self.damping, DampingInput::Hysteretic(_)) {
+            bad.push(
+                "damping.model",
+                "the hysteretic model is defined for harmonic motion only and cannot be \
+                 integrated in time; use `nonviscous` (its time-domain model) or `equivalent`",
+            );
+        }
+        let speed = match (self.speed, &self.speed_profile) {
+            (Some(w), None) => bad.check("speed", non_negative(w)).map(SpeedLaw::Constant),
+            (None, Some(p)) => {
+                let law = Pwl::parse(p, "speed_profile", false, &mut bad);
+                if p.iter().any(|q| q[1] < 0.0) {
+                    bad.push("speed_profile", "speeds must be >= 0");
+                }
+                law.map(SpeedLaw::Profile)
+            }
+            (Some(_), Some(_)) => {
+                bad.push("speed", "give `speed` or `speed_profile`, not both");
+                None
+            }
+            (None, None) => {
+                bad.push("speed", "give `speed` (constant) or `speed_profile`");
+                None
+            }
+        };
+        let duration = bad.check("duration", positive(self.duration));
+        let dt = bad.check("output_interval", positive(self.output_interval));
+        let tolerance = match self.tolerance {
+            None => Some(1e-6),
+            Some(x) if (1e-12..=1e-2).contains(&x) => Some(x),
+            Some(x) => {
+                bad.push("tolerance", format!("must be in [1e-12, 1e-2] (got {x})"));
+                None
+            }
+        };
+        // The output size is known from the request alone: check it before anything else.
+        let requested_nodes = self.nodes.as_ref().map(Vec::len);
+        let samples = match (duration, dt) {
+            (Some(d), Some(h)) => Some(sample_count(d, h)),
+            _ => None,
+        };
+        let model = Model::parse(&self.rotor, &self.damping, limits, bad)?;
+        let mut bad = Invalid::default();
+        let nodes = model.rotor.node_count();
+        let node = |bad: &mut Invalid, at: String, k: i64| node_index(bad, at, k, nodes);
+        let reported = requested_nodes.unwrap_or(nodes).max(1);
+        let samples = samples.expect("validated");
+        if samples.saturating_mul(reported) > limits.max_samples {
+            bad.push(
+                "output_interval",
+                format!(
+                    "{samples} samples x {reported} nodes exceed the limit of {} values \
+                     (WHIRL_MAX_SAMPLES): use a longer interval or fewer nodes",
+                    limits.max_samples
+                ),
+            );
+            return Err(bad);
+        }
+        let mut forces = vec![];
+        for (i, f) in self.forces.iter().enumerate() {
+            let at = format!("forces[{i}]");
+            let n = node(&mut bad, format!("{at}.node"), f.node);
+            let dir = bad.check(&format!("{at}.direction"), finite(f.direction));
+            let h = Pwl::parse(&f.history, &format!("{at}.history"), true, &mut bad);
+            if let (Some(node), Some(direction), Some(history)) = (n, dir, h) {
+                forces.push(Force {
+                    node,
+                    direction,
+                    history,
+                });
+            }
+        }
+        let mut unbalances = vec![];
+        for (i, u) in self.unbalances.iter().enumerate() {
+            let at = format!("unbalances[{i}]");
+            let n = node(&mut bad, format!("{at}.node"), u.node);
+            let amount = bad.check(&format!("{at}.amount"), non_negative(u.amount));
+            let phase = bad.check(&format!("{at}.phase"), finite(u.phase));
+            let from = bad.check(&format!("{at}.from"), non_negative(u.from));
+            if let (Some(node), Some(amount), Some(phase), Some(from)) = (n, amount, phase, from) {
+                unbalances.push(Unbalance {
+                    node,
+                    amount,
+                    phase,
+                    from,
+                });
+            }
+        }
+        let out = report_nodes(&mut bad, &self.nodes, nodes);
+        if !bad.is_empty() {
+            return Err(bad);
+        }
+        let spec = TimeSpec {
+            speed: speed.expect("validated"),
+            forces,
+            unbalances,
+            duration: duration.expect("validated"),
+            output_interval: dt.expect("validated"),
+            nodes: out,
+            tolerance: tolerance.expect("validated"),
+            max_steps: limits.max_steps,
+        };
+        let size = model.size();
+        let (s, n) = (size.states() as u64, size.dofs as u64);
+        let values = samples as u64 * (1 + 2 * reported as u64);
+        // Histories (complex) and, exact: V^-1 loads and the output rows of V; implicit: the
+        // LU of the stage matrix and a few state vectors. Both within a second eigen's heap.
+        let loads = (spec.forces.len() + spec.unbalances.len()) as u64;
+        let extra = samples as u64 * reported as u64 * 16
+            + 16 * s * (loads + reported as u64 + 16)
+            + 16 * n * n;
+        let steps = if spec.speed.constant().is_some() {
+            0.0
+        } else {
+            (samples as f64).max(1e4)
+        };
+        let work = size.eigen_work() + steps * 8.0 * (s * s) as f64;
+        let cost = Cost::new(size, 2, 0, extra, values).with_work(work);
+        Task {
+            kind: TaskKind::Time { model, spec },
+            cost,
+        }
+        .bounded(limits, "output_interval")
+    }
+}
+
+impl UnbalanceResponseRequest {
+    pub fn parse(&self, limits: &Limits) -> Result<Task, Invalid> {
+        let mut bad = Invalid::default();
+        let grid = speeds(&self.speeds, limits, &mut bad);
+        if self.unbalances.is_empty() {
+            bad.push("unbalances", "needs at least one unbalance");
+        }
+        let model = Model::parse(&self.rotor, &self.damping, limits, bad)?;
+        let mut bad = Invalid::default();
+        let nodes = model.rotor.node_count();
+        let mut unbalances = vec![];
+        for (i, u) in self.unbalances.iter().enumerate() {
+            let at = format!("unbalances[{i}]");
+            let n = node_index(&mut bad, format!("{at}.node"), u.node, nodes);
+            let amount = bad.check(&format!("{at}.amount"), non_negative(u.amount));
+            let phase = bad.check(&format!("{at}.phase"), finite(u.phase));
+            if let (Some(n), Some(a), Some(p)) = (n, amount, phase) {
+                unbalances.push((n, a, p));
+            }
+        }
+        let out = report_nodes(&mut bad, &self.nodes, nodes);
+        if !bad.is_empty() {
+            return Err(bad);
+        }
+        let speeds = grid.expect("validated");
+        let size = model.size();
+        let count = speeds.as_slice().len() as u64;
+        let values = count * (1 + 8 * out.len() as u64);
+        let s = size.states() as u64;
+        let threads = limits.threads.max(1) as u64;
+        // Per thread: the state matrix, the system and its LU.
+        let extra = threads * 3 * 16 * s * s + count * out.len() as u64 * 16;
+        let work = count as f64 * (s * s * s) as f64 * 3.0;
+        let cost = Cost::new(size, 0, 0, extra, values).with_work(work);
+        Task {
+            kind: TaskKind::Unbalance {
+                model,
+                speeds,
+                unbalances,
+                nodes: out,
+            },
+            cost,
+        }
+        .bounded(limits, "speeds")
+    }
+}
+
+/// A job's input, typed by its analysis: what `POST /v1/jobs` validates.
+pub enum JobInput {
+    Modal(ModalRequest),
+    Campbell(SweepRequest),
+    Stability(SweepRequest),
+    Damping(DampingMatricesRequest),
+    Time(TimeResponseRequest),
+    Unbalance(UnbalanceResponseRequest),
+}
+
+impl JobInput {
+    pub fn analysis(&self) -> AnalysisName {
+        match self {
+            JobInput::Modal(_) => AnalysisName::Modal,
+            JobInput::Campbell(_) => AnalysisName::Campbell,
+            JobInput::Stability(_) => AnalysisName::Stability,
+            JobInput::Damping(_) => AnalysisName::Damping,
+            JobInput::Time(_) => AnalysisName::TimeResponse,
+            JobInput::Unbalance(_) => AnalysisName::UnbalanceResponse,
+        }
+    }
+
+    pub fn parse(&self, limits: &Limits) -> Result<Task, Invalid> {
+        match self {
+            JobInput::Modal(r) => r.parse(limits),
+            JobInput::Campbell(r) => r.parse_campbell(limits),
+            JobInput::Stability(r) => r.parse_stability(limits),
+            JobInput::Damping(r) => r.parse(limits),
+            JobInput::Time(r) => r.parse(limits),
+            JobInput::Unbalance(r) => r.parse(limits),
+        }
+    }
+}
