@@ -137,7 +137,11 @@ fn every_estimate_bounds_the_measured_peak_heap() {
     h["speeds"] = json!({"start": 0, "stop": 3000, "count": 24});
     h.as_object_mut().unwrap().remove("max_frequency");
     cases.push(("stability, compressor, hysteretic", "stability", h));
-    cases.push(("modal, compressor NVD", "modal", example("compressor-nvd.modal.json")));
+    cases.push((
+        "modal, compressor NVD",
+        "modal",
+        example("compressor-nvd.modal.json"),
+    ));
     cases.push((
         "modal, full compressor viscous",
         "modal",
@@ -163,7 +167,38 @@ fn every_estimate_bounds_the_measured_peak_heap() {
         "damping",
         json!({"rotor": compressor["rotor"], "damping": {"model": "nonviscous", "modes": 8}, "form": "state"}),
     ));
-    println!("{:<40} {:>12} {:>12} {:>7}", "case", "measured MB", "estimate MB", "ratio");
+    // Hostile sizes are refused by counting, with nothing proportional allocated: a beam at
+    // the dof limit with 12 + 12 branches per mode (26,000 states), and ten million elements.
+    let steel = json!({"steel": {"young_modulus": 2.1e11, "density": 7800, "poisson_ratio": 0.3, "loss_factor": 0.01}});
+    let hostile = [
+        json!({"rotor": {"type": "beam", "materials": steel,
+                 "shaft": [{"length": 2, "outer_diameter": 0.1, "material": "steel", "elements": 499}],
+                 "supports": [{"node": 0, "stiffness": 1e8, "loss_factor": 0.1}, {"node": 499, "stiffness": 1e8, "loss_factor": 0.1}]},
+               "damping": {"model": "nonviscous", "rotating": {"branches": 12}, "nonrotating": {"branches": 12}},
+               "speeds": {"start": 0, "stop": 1000, "count": 10}}),
+        json!({"rotor": {"type": "beam", "materials": steel,
+                 "shaft": [{"length": 2, "outer_diameter": 0.1, "material": "steel", "elements": 10_000_000}],
+                 "supports": [{"node": 0, "stiffness": 1e8}]},
+               "damping": {"model": "viscous"}, "speeds": {"start": 0, "stop": 1000, "count": 10}}),
+    ];
+    for body in hostile {
+        let req: SweepRequest = serde_json::from_value(body).unwrap();
+        let t0 = std::time::Instant::now();
+        let mut refused = None;
+        let peak = measure(|| refused = req.parse_campbell(&limits).err());
+        let refused = refused.expect("refused");
+        println!(
+            "refused in {:.2} ms with {} kB of heap: {}",
+            t0.elapsed().as_secs_f64() * 1e3,
+            peak / 1024,
+            refused
+        );
+        assert!(peak < 256 * 1024, "{peak} bytes allocated to refuse it");
+    }
+    println!(
+        "{:<40} {:>12} {:>12} {:>7}",
+        "case", "measured MB", "estimate MB", "ratio"
+    );
     for (name, kind, body) in cases {
         let task = parse(kind, body, &limits);
         let estimate = task.cost.peak_bytes as f64;

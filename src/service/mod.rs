@@ -96,7 +96,10 @@ pub fn router(state: AppState) -> (Router, utoipa::openapi::OpenApi) {
         .layer(DefaultBodyLimit::max(limits.max_bytes))
         .layer(axum::Extension(limits))
         .layer(axum::middleware::from_fn_with_state(limits, refuse_large_bodies))
-        .layer(axum::middleware::from_fn(method_problems))
+        .layer(axum::middleware::from_fn_with_state(
+            Arc::new(allowed_methods(&api)),
+            method_problems,
+        ))
         .layer(axum::middleware::from_fn_with_state(state, metrics::track))
         .layer(CompressionLayer::new())
         .layer(
@@ -146,18 +149,60 @@ async fn refuse_large_bodies(
     next.run(req).await
 }
 
+/// Path templates of the API and the methods each answers (`Allow`), from the OpenAPI document.
+type Allowed = Vec<(Vec<String>, String)>;
+
+fn allowed_methods(api: &utoipa::openapi::OpenApi) -> Allowed {
+    api.paths
+        .paths
+        .iter()
+        .map(|(path, item)| {
+            let mut methods = vec![];
+            for (name, op) in [
+                ("GET", &item.get),
+                ("HEAD", &item.get),
+                ("POST", &item.post),
+                ("PUT", &item.put),
+                ("PATCH", &item.patch),
+                ("DELETE", &item.delete),
+            ] {
+                if op.is_some() {
+                    methods.push(name);
+                }
+            }
+            let segments = path.split('/').map(str::to_string).collect();
+            (segments, methods.join(", "))
+        })
+        .collect()
+}
+
+/// The `Allow` of a request path (`{name}` segments match any one segment).
+fn allow_of(allowed: &Allowed, path: &str) -> String {
+    let segs: Vec<&str> = path.split('/').collect();
+    allowed
+        .iter()
+        .find(|(t, _)| {
+            t.len() == segs.len()
+                && t.iter()
+                    .zip(&segs)
+                    .all(|(a, b)| (a.starts_with('{') && a.ends_with('}')) || a == b)
+        })
+        .map(|(_, m)| m.clone())
+        .unwrap_or_default()
+}
+
 /// A method the path does not answer (OPTIONS included) is a problem+json 405 with `Allow`.
-async fn method_problems(req: Request, next: Next) -> Response {
+async fn method_problems(
+    axum::extract::State(allowed): axum::extract::State<Arc<Allowed>>,
+    req: Request,
+    next: Next,
+) -> Response {
+    let path = req.uri().path().to_string();
     let resp = next.run(req).await;
     if resp.status() != StatusCode::METHOD_NOT_ALLOWED {
         return resp;
     }
-    let allow = resp
-        .headers()
-        .get(header::ALLOW)
-        .and_then(|v| v.to_str().ok())
-        .unwrap_or("")
-        .to_string();
+    let allow = allow_of(&allowed, &path);
     let mut out = ApiError::MethodNotAllowed(allow).into_response();
     if let Some(route) = resp.extensions().get::<metrics::Route>() {
         out.extensions_mut().insert(route.clone());
