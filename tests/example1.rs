@@ -19,7 +19,7 @@ use whirl::model::api::RotorInput;
 use whirl::model::damping::{DampingModel, NonviscousSpec};
 use whirl::model::rotor::{Limits, Rotor};
 use whirl::service::{Config, app};
-use whirl::system::RotorSystem;
+use whirl::system::{Layout, RotorSystem};
 
 fn example_file(name: &str) -> Value {
     let path = format!("{}/examples/{name}", env!("CARGO_MANIFEST_DIR"));
@@ -196,7 +196,9 @@ fn physical_and_modal_nonviscous_forms_have_the_same_poles() {
     let modal = nonviscous::modal_form(&system, &basis, &spec).unwrap();
     let modal = DampedModel {
         kind: ModelKind::Linear(Box::new(modal)),
+        natural_frequencies: basis.omega.clone(),
         basis,
+        layout: Layout::Single,
     };
     let physical = DampedModel::build(&system, &paper_nvd()).unwrap();
     for speed in [0.0, 1400.0, 3500.0] {

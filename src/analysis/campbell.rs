@@ -39,7 +39,7 @@ pub fn campbell(
     control: &Control,
 ) -> Result<CampbellResult, AnalysisError> {
     control.expect(super::stability::work(speeds.len()));
-    let mut tracker = Tracker::new(2 * model.dofs());
+    let mut tracker = Tracker::new(2 * model.rotor_dofs());
     let summaries = sweep(model, speeds, control, |set| tracker.push(set))?;
     let tracks = tracker.finish();
     let mut branches: Vec<Branch> = tracks

@@ -4,10 +4,19 @@
 //! model adds one internal pole per branch. Internal poles are told apart by where their
 //! elastic energy lies (in the branch springs, not in the rotor), which does not depend on the
 //! units of the internal coordinates. Rotor poles whirl `forward` (`omega >= 0`) or `backward`.
+//!
+//! In doubled coordinates `(r, conj r)` every mode appears twice, as `s` with a shape `(a, b)`
+//! and as `conj s` with `(conj b, conj a)` (MODEL.md section 8). Each is reported once: the
+//! member whose `r` part `a` is the larger (for a planar mode, where they are equal, the one
+//! with `omega >= 0`). A node's motion is then `a e^{st} + conj(b) e^{conj(s) t}`: an ellipse
+//! whose forward and backward circular parts are `|a|` and `|b|` (for `omega >= 0`; swapped
+//! otherwise), and the pole's whirl ratio is `(F - B) / (F + B)` over the translations: +1
+//! circular forward, -1 circular backward, 0 planar.
 
 use crate::damping::state::StateModel;
 use crate::damping::{DampedModel, ModelKind};
 use crate::linalg::{self, LinalgError, c64};
+use crate::system::Layout;
 
 /// Direction of whirl of a pole.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -17,12 +26,15 @@ pub enum Whirl {
     Internal,
 }
 
-/// A pole `s` and its mode shape on the physical coordinates (unit norm).
+/// A pole `s` and its mode shape on the physical coordinates (unit norm; `(a, b)` in doubled
+/// coordinates).
 #[derive(Debug, Clone)]
 pub struct Pole {
     pub s: c64,
     pub whirl: Whirl,
     pub shape: Vec<c64>,
+    /// `(F - B) / (F + B)` of the forward and backward circular parts (module docs).
+    pub whirl_ratio: f64,
 }
 
 impl Pole {
@@ -107,26 +119,27 @@ impl PoleSet {
 
 /// Poles of `model` at spin speed `speed`.
 pub fn poles_at(model: &DampedModel, speed: f64) -> Result<PoleSet, LinalgError> {
-    let (mut rotor, mut internal) = (vec![], vec![]);
+    let (mut rotor, mut internal): (Vec<(Pole, f64)>, Vec<(Pole, f64)>) = (vec![], vec![]);
     let n = model.dofs();
+    let doubled = model.layout == Layout::Doubled;
     match &model.kind {
         ModelKind::Linear(m) => {
             let e = linalg::eigen(&m.at(speed))?;
-            let mut scored: Vec<(f64, Pole)> = (0..e.values.len())
+            let mut scored: Vec<(f64, (Pole, f64))> = (0..e.values.len())
                 .map(|j| {
                     let (x, y) = split(m, &e.vectors, j);
                     let fraction = m.rotor_energy_fraction(&x, &y);
-                    (fraction, rotor_pole(e.values[j], x))
+                    (fraction, pole(e.values[j], x, y, m, doubled))
                 })
                 .collect();
-            // Exactly 2n rotor poles: the 2n whose energy is most in the rotor.
+            // Exactly 2N rotor poles: the 2N whose energy is most in the rotor.
             scored.sort_by(|a, b| b.0.total_cmp(&a.0));
-            for (k, (_, mut p)) in scored.into_iter().enumerate() {
+            for (k, (_, (mut p, w))) in scored.into_iter().enumerate() {
                 if k >= 2 * n {
                     p.whirl = Whirl::Internal;
-                    internal.push(p);
+                    internal.push((p, w));
                 } else {
-                    rotor.push(p);
+                    rotor.push((p, w));
                 }
             }
         }
@@ -135,13 +148,21 @@ pub fn poles_at(model: &DampedModel, speed: f64) -> Result<PoleSet, LinalgError>
                 let e = linalg::eigen(&sm.model.at(speed))?;
                 for j in 0..e.values.len() {
                     if sm.consistent(e.values[j], speed) {
-                        let (x, _) = split(&sm.model, &e.vectors, j);
-                        rotor.push(rotor_pole(e.values[j], x));
+                        let (x, y) = split(&sm.model, &e.vectors, j);
+                        rotor.push(pole(e.values[j], x, y, &sm.model, doubled));
                     }
                 }
             }
         }
     }
+    let (mut rotor, mut internal): (Vec<Pole>, Vec<Pole>) = if doubled {
+        (once_each(rotor), once_each(internal))
+    } else {
+        (
+            rotor.into_iter().map(|p| p.0).collect(),
+            internal.into_iter().map(|p| p.0).collect(),
+        )
+    };
     rotor.sort_by(|a, b| {
         a.s.im
             .abs()
@@ -153,20 +174,104 @@ pub fn poles_at(model: &DampedModel, speed: f64) -> Result<PoleSet, LinalgError>
         speed,
         rotor,
         internal,
-        expected_rotor: 2 * n,
+        expected_rotor: 2 * model.rotor_dofs(),
     })
 }
 
-fn rotor_pole(s: c64, x: Vec<c64>) -> Pole {
-    Pole {
-        s,
-        whirl: if s.im >= 0.0 {
-            Whirl::Forward
-        } else {
-            Whirl::Backward
-        },
-        shape: normalise(x),
+/// How much more a doubled pole's shape is in `r` than in `conj r`, in [-1, 1] (for an
+/// internal pole with no rotor motion, its rotating branches on either copy).
+fn forward_weight(p: &Pole, y_weight: f64) -> f64 {
+    let h = p.shape.len() / 2;
+    let a: f64 = p.shape[..h].iter().map(|z| z.norm_sqr()).sum();
+    let b: f64 = p.shape[h..].iter().map(|z| z.norm_sqr()).sum();
+    if a + b > 1e-20 {
+        (a - b) / (a + b)
+    } else {
+        y_weight
     }
+}
+
+/// Each mirror pair `(s, conj s)` of a doubled model once (see the module docs). A real pole
+/// is its own mirror: kept, once per distinct value.
+fn once_each(poles: Vec<(Pole, f64)>) -> Vec<Pole> {
+    const TIE: f64 = 1e-8;
+    let real = |p: &Pole| p.s.im.abs() <= 1e-9 * p.s.norm();
+    let mut out = vec![];
+    let mut ties = vec![];
+    for (p, w) in poles {
+        let f = forward_weight(&p, w);
+        if real(&p) || f.abs() <= TIE {
+            ties.push(p);
+        } else if f > 0.0 {
+            out.push(p);
+        }
+    }
+    // Planar modes (equal in `r` and `conj r`) and real poles: pair each with its mirror, if
+    // it has one, and keep one of the two.
+    let mut used = vec![false; ties.len()];
+    for i in 0..ties.len() {
+        if used[i] {
+            continue;
+        }
+        used[i] = true;
+        let target = ties[i].s.conj();
+        let mirror = (0..ties.len())
+            .filter(|&j| !used[j] && (ties[j].s - target).norm() <= 1e-6 * target.norm())
+            .min_by(|&j, &k| {
+                let d = |m: usize| (ties[m].s - target).norm();
+                d(j).total_cmp(&d(k))
+            });
+        match mirror {
+            Some(j) => {
+                used[j] = true;
+                let keep = if ties[i].s.im >= ties[j].s.im { i } else { j };
+                out.push(ties[keep].clone());
+            }
+            None => out.push(ties[i].clone()),
+        }
+    }
+    out
+}
+
+/// A pole with its shape `x` (and, for a doubled internal pole, the weight of its rotating
+/// branches on `r` against `conj r` in `.1`).
+fn pole(s: c64, x: Vec<c64>, y: Vec<c64>, m: &StateModel, doubled: bool) -> (Pole, f64) {
+    let whirl = if s.im >= 0.0 {
+        Whirl::Forward
+    } else {
+        Whirl::Backward
+    };
+    let (ratio, y_weight) = if doubled {
+        let h = x.len() / 2;
+        let a = x[..h].iter().map(|z| z.norm_sqr()).sum::<f64>().sqrt();
+        let b = x[h..].iter().map(|z| z.norm_sqr()).sum::<f64>().sqrt();
+        let (f, bw) = if s.im >= 0.0 { (a, b) } else { (b, a) };
+        let ratio = if f + b > 0.0 { (f - bw) / (f + bw) } else { 0.0 };
+        let br = m.branches();
+        let (mut yr, mut yc) = (0.0, 0.0);
+        for (j, v) in y.iter().enumerate() {
+            if br.spin[j] > 0.0 {
+                yr += v.norm_sqr();
+            } else if br.spin[j] < 0.0 {
+                yc += v.norm_sqr();
+            }
+        }
+        let w = if yr + yc > 0.0 { (yr - yc) / (yr + yc) } else { 0.0 };
+        (ratio, w)
+    } else if s.im >= 0.0 {
+        (1.0, 0.0)
+    } else {
+        (-1.0, 0.0)
+    };
+    (
+        Pole {
+            s,
+            whirl,
+            shape: normalise(x),
+            whirl_ratio: ratio,
+        },
+        y_weight,
+    )
 }
 
 /// The displacement part `x` and internal part `y` of eigenvector `j` of a state `[v, x, y]`.

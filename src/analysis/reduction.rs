@@ -54,7 +54,9 @@ pub fn reduce_for_sweep(
     bound: f64,
 ) -> Result<Option<(DampedModel, Reduction)>, AnalysisError> {
     let n = system.n();
-    if !bound.is_finite() || speeds.is_empty() {
+    // Supports in the general form are not carried into modal coordinates (yet): such rotors
+    // are solved in full.
+    if !bound.is_finite() || speeds.is_empty() || !system.supports.is_empty() {
         return Ok(None);
     }
     let basis = &full.basis;

@@ -7,11 +7,10 @@ use super::control::Control;
 use super::modal::{self, ModalResult};
 use super::stability::{self, Threshold};
 use super::time::{self, TimeError, TimeResult};
-use super::unbalance::{self, SteadyUnbalance};
+use super::unbalance::{self, Orbit, SteadyUnbalance};
 use crate::damping::report::{self, ModelMatrices, ReportError};
 use crate::damping::{DampedModel, DampingError};
 use crate::fem::modal::ModalError;
-use crate::linalg::c64;
 use crate::model::task::{Model, Task, TaskKind};
 use crate::model::{Invalid, rotor::Rotor};
 use crate::system::RotorSystem;
@@ -34,8 +33,8 @@ pub enum Outcome {
     Unbalance {
         speeds: Vec<f64>,
         nodes: Vec<usize>,
-        /// Complex amplitude of each node at each speed.
-        response: Vec<Vec<c64>>,
+        /// The orbit of each node at each speed.
+        response: Vec<Vec<Orbit>>,
         model: &'static str,
     },
 }
@@ -137,6 +136,7 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
             band,
             max_deviation,
             max_states,
+            speed,
         } => {
             let system = assemble(model)?;
             let options = report::Options {
@@ -144,6 +144,7 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                 band: *band,
                 max_deviation: *max_deviation,
                 max_states: *max_states,
+                speed: *speed,
             };
             let r = report::matrices(&system, &model.damping, &options).map_err(|e| match e {
                 ReportError::Damping(e) => damping_error(e, &model.rotor),

@@ -1,18 +1,45 @@
 //! Equivalent viscous damping (model E; paper eqs. 5-7 and 9, MODEL.md section 3).
 //!
 //! With the mass-normalised undamped modes `Phi` (natural frequencies `w_i`), for nonrotating
-//! and rotating damping separately: `kbar''_ii = (Phi^T K'' Phi)_ii`, `cbar_ii = kbar''_ii / w_i`,
-//! and back to physical coordinates with `Phi^-1 = Phi^T M` (also right for a reduced mode set,
-//! `Mbar = I`): `C_eq = (M Phi) diag(cbar) (M Phi)^T`. Off-diagonal modal terms are dropped
+//! and rotating damping separately: `kbar''_ii = (Phi^H K'' Phi)_ii`, `cbar_ii = kbar''_ii / w_i`,
+//! and back to physical coordinates with `Phi^-1 = Phi^H M` (also right for a reduced mode set,
+//! `Mbar = I`): `C_eq = (M Phi) diag(cbar) (M Phi)^H`. Off-diagonal modal terms are dropped
 //! (light damping). The rotating part is rotating damping: it brings `-i Omega C_eq,r`.
 //! Jeffcott: `c_eq = k''/w_n`, threshold `Omega* = 1 + eta_n / eta_r` (eq. 10).
+//!
+//! On supports that are not isotropic, the nonrotating part is built on the real x/y modes
+//! (doubled coordinates), and the rotating part, which lives in the rotor where x and y cannot
+//! be told apart, on the rotor's axisymmetric modes, the same on both blocks.
 
+use super::Bases;
 use super::state::SecondOrder;
 use crate::fem::modal::ModalBasis;
-use crate::linalg::RMat;
-use crate::system::RotorSystem;
+use crate::linalg::{self, CMat, RMat};
+use crate::system::Realized;
 
-/// `C_eq` for one hysteretic matrix `K''`.
+/// `C_eq` for one hysteretic matrix `K''` over modes `phi` (columns, `phi^H M phi = I`).
+pub fn equivalent(k_loss: &CMat, mass: &CMat, omega: &[f64], phi: &CMat) -> CMat {
+    let p = mass * phi;
+    let n = mass.nrows();
+    let kp = k_loss * phi;
+    let mut c = CMat::zeros(n, n);
+    for (i, w) in omega.iter().enumerate() {
+        let modal: f64 = (0..n).map(|r| (phi[(r, i)].conj() * kp[(r, i)]).re).sum();
+        let cbar = modal / w;
+        if cbar == 0.0 {
+            continue;
+        }
+        for s in 0..n {
+            let ps = p[(s, i)].conj() * cbar;
+            for r in 0..n {
+                c[(r, s)] += p[(r, i)] * ps;
+            }
+        }
+    }
+    c
+}
+
+/// `C_eq` for a real `K''` over a real basis (the single layout's arithmetic).
 pub fn equivalent_matrix(k_loss: &RMat, mass: &RMat, basis: &ModalBasis) -> RMat {
     let modal = basis.project(k_loss);
     let p = basis.participation(mass);
@@ -33,10 +60,17 @@ pub fn equivalent_matrix(k_loss: &RMat, mass: &RMat, basis: &ModalBasis) -> RMat
 }
 
 /// The rotor with `C_n + C_eq,n` and `C_r + C_eq,r`.
-pub fn second_order(system: &RotorSystem, basis: &ModalBasis) -> SecondOrder {
-    let c_n = &system.damping_nonrotating
-        + equivalent_matrix(&system.hysteretic_nonrotating, &system.mass, basis);
-    let c_r = &system.damping_rotating
-        + equivalent_matrix(&system.hysteretic_rotating, &system.mass, basis);
-    SecondOrder::with_damping(system, &c_n, &c_r)
+pub fn second_order(r: &Realized, rotor_loss: &RMat, bases: &Bases) -> SecondOrder {
+    let c_r = linalg::to_complex(&equivalent_matrix(rotor_loss, &bases.axis_mass, &bases.axis));
+    let c_n = match &bases.xy {
+        None => equivalent(
+            &r.loss_nonrotating,
+            &linalg::to_complex(&bases.axis_mass),
+            &bases.axis.omega,
+            &linalg::to_complex(&bases.axis.phi),
+        ),
+        Some((xy, mass)) => equivalent(&r.loss_nonrotating, mass, &xy.omega, &xy.phi),
+    };
+    let c_r = r.on_blocks(&c_r);
+    SecondOrder::with_damping(r, &(&r.damping_nonrotating + &c_n), &(&r.damping_rotating + &c_r))
 }

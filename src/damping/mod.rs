@@ -10,6 +10,9 @@
 //! - `nonviscous` (NVD, section 4): Maxwell branches on massless internal coordinates.
 //!
 //! Every `A(Omega) = A0 + Omega A1` is affine in the spin speed, so a sweep assembles once.
+//! With supports tabulated against speed, the models are built at the table's speeds and the
+//! state matrix is linear between them (`StateModel`). The modal bases are those of the
+//! nonrotating rotor, at rest.
 
 pub mod equivalent;
 pub mod hysteretic;
@@ -17,19 +20,24 @@ pub mod nonviscous;
 pub mod report;
 pub mod state;
 
-use crate::fem::modal::{ModalBasis, ModalError};
-use crate::linalg::LinalgError;
+use crate::fem::modal::{HermitianBasis, ModalBasis, ModalError};
+use crate::linalg::{CMat, LinalgError, RMat};
 use crate::model::damping::DampingModel;
-use crate::system::RotorSystem;
+use crate::system::{Layout, Realized, RotorSystem};
 pub use state::{Branches, SecondOrder, StateModel};
 
 /// A rotor under one damping model, ready for eigenvalue analyses.
 #[derive(Debug, Clone)]
 pub struct DampedModel {
     pub kind: ModelKind,
-    /// Undamped nonrotating modes of the rotor (all of them): natural frequencies ascending,
-    /// rad/s, and the basis a modal reduction starts from.
+    /// Undamped nonrotating modes of the rotor (all of them, axisymmetric: supports averaged
+    /// over directions): the basis a modal reduction starts from.
     pub basis: ModalBasis,
+    /// The coordinates: `r`, or `(r, conj r)`.
+    pub layout: Layout,
+    /// Natural frequencies of the undamped nonrotating rotor, rad/s, ascending: one per
+    /// degenerate pair in the coordinates `r`; each x/y mode when doubled.
+    pub natural_frequencies: Vec<f64>,
 }
 
 /// The linear problem(s) a damping model poses.
@@ -37,8 +45,20 @@ pub struct DampedModel {
 pub enum ModelKind {
     /// Viscous, equivalent and nonviscous models: one linear system.
     Linear(Box<StateModel>),
-    /// The hysteretic model: one linear system per sign pair, roots filtered by consistency.
+    /// The hysteretic model: one linear system per sign pattern, roots filtered by consistency.
     Hysteretic(Vec<hysteretic::SignedModel>),
+}
+
+/// The modal bases the equivalent and nonviscous models are built on (truncated to the modes
+/// they retain).
+#[derive(Debug, Clone)]
+pub struct Bases {
+    /// The rotor's axisymmetric modes (its rotating dampers; every damper in the coordinates
+    /// `r`), real, and the mass they are normalised with.
+    pub axis: ModalBasis,
+    pub axis_mass: RMat,
+    /// Doubled coordinates: the real x/y modes (the nonrotating dampers) and their mass.
+    pub xy: Option<(HermitianBasis, CMat)>,
 }
 
 /// Why a damping model cannot be built for a rotor.
@@ -69,43 +89,172 @@ impl From<LinalgError> for DampingError {
     }
 }
 
+impl Bases {
+    /// The bases of `system` from all its modes, truncated to `modes` (axisymmetric modes;
+    /// each is a pair of x/y modes).
+    pub fn new(
+        system: &RotorSystem,
+        all: &ModalBasis,
+        xy_all: Option<&HermitianBasis>,
+        modes: Option<usize>,
+    ) -> Self {
+        let axis_mass = if system.supports.is_empty() {
+            system.mass.clone()
+        } else {
+            let (_, m) = Realized::undamped(system, Layout::Single);
+            RMat::from_fn(m.nrows(), m.ncols(), |i, j| m[(i, j)].re)
+        };
+        Bases {
+            axis: modes.map_or_else(|| all.clone(), |k| all.truncated(k)),
+            axis_mass,
+            xy: xy_all.map(|b| {
+                let b = modes.map_or_else(|| b.clone(), |k| b.truncated(2 * k));
+                (b, Realized::undamped(system, Layout::Doubled).1)
+            }),
+        }
+    }
+
+    /// Every basis of `system`, truncated to `modes`.
+    pub fn of(system: &RotorSystem, modes: Option<usize>) -> Result<Self, DampingError> {
+        let all = ModalBasis::of(system)?;
+        let xy = match system.layout() {
+            Layout::Doubled => Some(HermitianBasis::of(system)?),
+            Layout::Single => None,
+        };
+        Ok(Self::new(system, &all, xy.as_ref(), modes))
+    }
+
+    /// The dampers' tuning and loss stiffness, nonrotating on `omega_n` and rotating on the
+    /// axisymmetric modes, for a realization's loss: `(mode, w0, loss, rotating)`.
+    pub fn dampers(&self, r: &Realized, rotor_loss: &RMat) -> Vec<(usize, f64, f64, bool)> {
+        let mut out = vec![];
+        let loss_r = self.axis.project(rotor_loss);
+        let (omega_n, phi_n) = match &self.xy {
+            None => (&self.axis.omega, crate::linalg::to_complex(&self.axis.phi)),
+            Some((b, _)) => (&b.omega, b.phi.clone()),
+        };
+        let kp = &r.loss_nonrotating * &phi_n;
+        for (i, &w) in omega_n.iter().enumerate() {
+            let l: f64 = (0..phi_n.nrows())
+                .map(|k| (phi_n[(k, i)].conj() * kp[(k, i)]).re)
+                .sum();
+            if l > 0.0 {
+                out.push((i, w, l, false));
+            }
+        }
+        for (i, &w) in self.axis.omega.iter().enumerate() {
+            if loss_r[(i, i)] > 0.0 {
+                out.push((i, w, loss_r[(i, i)], true));
+            }
+        }
+        out
+    }
+}
+
 impl DampedModel {
     /// Builds the model. The modal basis is computed once, here: it proves the rotor is held
     /// (no rigid-body mode) for every model, and it is the basis of the equivalent and
     /// nonviscous models.
     pub fn build(system: &RotorSystem, model: &DampingModel) -> Result<Self, DampingError> {
         let all = ModalBasis::of(system)?;
-        let truncated = |modes: Option<usize>| match modes {
-            Some(k) => all.truncated(k),
-            None => all.clone(),
+        let layout = system.layout();
+        let xy_all = match layout {
+            Layout::Doubled => Some(HermitianBasis::of(system)?),
+            Layout::Single => None,
         };
-        let n = system.n();
+        let natural_frequencies = xy_all
+            .as_ref()
+            .map_or_else(|| all.omega.clone(), |b| b.omega.clone());
+        let modes = match model {
+            DampingModel::Equivalent { modes } => *modes,
+            DampingModel::Nonviscous(spec) => spec.modes,
+            _ => None,
+        };
+        let bases = || Bases::new(system, &all, xy_all.as_ref(), modes);
+        // One realization per speed of the supports' tables (one in all when constant).
+        let table = system.table_speeds();
+        let points = if table.is_empty() { vec![0.0] } else { table };
+        let realized: Vec<Realized> = points.iter().map(|&w| Realized::at(system, w)).collect();
+        let tabulate = |models: Vec<StateModel>| -> StateModel {
+            if models.len() == 1 {
+                models.into_iter().next().expect("one")
+            } else {
+                StateModel::table(&points, models)
+            }
+        };
+        let size = realized[0].size();
         let kind = match model {
-            DampingModel::Viscous => ModelKind::Linear(Box::new(StateModel::new(
-                &SecondOrder::viscous(system),
-                &Branches::none(n),
-            )?)),
-            DampingModel::Hysteretic => ModelKind::Hysteretic(hysteretic::signed_models(system)?),
-            DampingModel::Equivalent { modes } => {
-                let so = equivalent::second_order(system, &truncated(*modes));
-                ModelKind::Linear(Box::new(StateModel::new(&so, &Branches::none(n))?))
+            DampingModel::Viscous => ModelKind::Linear(Box::new(tabulate(
+                realized
+                    .iter()
+                    .map(|r| StateModel::new(&SecondOrder::viscous(r), &Branches::none(size)))
+                    .collect::<Result<_, _>>()?,
+            ))),
+            DampingModel::Hysteretic => {
+                let per_point: Vec<Vec<hysteretic::SignedModel>> = realized
+                    .iter()
+                    .map(hysteretic::signed_models)
+                    .collect::<Result<_, _>>()?;
+                let patterns = per_point[0].len();
+                let mut out = vec![];
+                for k in 0..patterns {
+                    let first = &per_point[0][k];
+                    out.push(hysteretic::SignedModel {
+                        nonrotating: first.nonrotating,
+                        rotating: first.rotating,
+                        counter: first.counter,
+                        model: tabulate(per_point.iter().map(|p| p[k].model.clone()).collect()),
+                    });
+                }
+                ModelKind::Hysteretic(out)
+            }
+            DampingModel::Equivalent { .. } => {
+                let b = bases();
+                ModelKind::Linear(Box::new(tabulate(
+                    realized
+                        .iter()
+                        .map(|r| {
+                            let so = equivalent::second_order(r, &system.hysteretic_rotating, &b);
+                            StateModel::new(&so, &Branches::none(size))
+                        })
+                        .collect::<Result<_, _>>()?,
+                )))
             }
             DampingModel::Nonviscous(spec) => {
-                let branches = nonviscous::branches(system, &truncated(spec.modes), spec);
-                ModelKind::Linear(Box::new(StateModel::new(
-                    &SecondOrder::viscous(system),
-                    &branches,
-                )?))
+                let b = bases();
+                let refs: Vec<&Realized> = realized.iter().collect();
+                let branches = nonviscous::branches(&refs, &system.hysteretic_rotating, &b, spec);
+                ModelKind::Linear(Box::new(tabulate(
+                    realized
+                        .iter()
+                        .zip(&branches)
+                        .map(|(r, br)| StateModel::new(&SecondOrder::viscous(r), br))
+                        .collect::<Result<_, _>>()?,
+                )))
             }
         };
-        Ok(DampedModel { kind, basis: all })
+        Ok(DampedModel {
+            kind,
+            basis: all,
+            layout,
+            natural_frequencies,
+        })
     }
 
-    /// Complex degrees of freedom of the rotor (not counting internal coordinates).
+    /// Complex degrees of freedom of the state's coordinates (`2n` when doubled), not
+    /// counting internal coordinates.
     pub fn dofs(&self) -> usize {
         match &self.kind {
             ModelKind::Linear(m) => m.n(),
             ModelKind::Hysteretic(v) => v[0].model.n(),
+        }
+    }
+
+    /// Complex degrees of freedom of the rotor (`n`, also when doubled).
+    pub fn rotor_dofs(&self) -> usize {
+        match self.layout {
+            Layout::Single => self.dofs(),
+            Layout::Doubled => self.dofs() / 2,
         }
     }
 

@@ -14,11 +14,12 @@
 //! back-transformation, exact when all modes are kept) the branch couples through `u = M phi_i`.
 //! A damper with zero loss adds no branches.
 
+use super::Bases;
 use super::state::{Branches, SecondOrder, StateModel};
 use crate::fem::modal::ModalBasis;
-use crate::linalg::{self, LinalgError, RMat};
+use crate::linalg::{self, CMat, LinalgError, RMat};
 use crate::model::damping::NonviscousSpec;
-use crate::system::RotorSystem;
+use crate::system::{Layout, Realized, RotorSystem};
 
 /// The branches of one nonviscous damper, independent of the damper's size and tuning.
 #[derive(Debug, Clone, PartialEq)]
@@ -133,61 +134,148 @@ pub fn collocation_gammas(m: usize, a: f64) -> Result<Vec<f64>, linalg::LinalgEr
 }
 
 /// All branches of the model on the rotor, in physical coordinates (the paper's
-/// back-transformed form): branch of mode `i` couples through `M phi_i`.
-pub fn branches(system: &RotorSystem, basis: &ModalBasis, spec: &NonviscousSpec) -> Branches {
-    branches_on(&basis.participation(&system.mass), system, basis, spec)
+/// back-transformed form), for each realization of its loss (one per support table speed;
+/// one in all for constant supports). A damper exists where its mode has loss at some speed,
+/// so every realization has the same internal coordinates.
+///
+/// Nonrotating dampers serve the modes of `bases` in the layout (the real x/y modes when the
+/// coordinates are doubled); rotating ones, whose dampers are in the rotor, the axisymmetric
+/// modes, on `r` (spin +1) and, doubled, on `conj r` too (spin -1).
+pub fn branches(
+    realized: &[&Realized],
+    rotor_loss: &RMat,
+    bases: &Bases,
+    spec: &NonviscousSpec,
+) -> Vec<Branches> {
+    let n_layout = realized[0].size();
+    let n = rotor_loss.nrows();
+    let doubled = realized[0].layout == Layout::Doubled;
+    let axis = &bases.axis;
+    let axis_coupling = linalg::to_complex(&axis.participation(&bases.axis_mass));
+    let loss_r = axis.project(rotor_loss);
+    // Nonrotating modes, their couplings, and their loss at each realization.
+    let (omega_n, coupling_n, loss_n): (&[f64], CMat, Vec<Vec<f64>>) = match &bases.xy {
+        None => {
+            let phi = linalg::to_complex(&axis.phi);
+            let loss = realized.iter().map(|r| modal_loss(&r.loss_nonrotating, &phi)).collect();
+            (&axis.omega, axis_coupling.clone(), loss)
+        }
+        Some((xy, mass)) => {
+            let loss = realized.iter().map(|r| modal_loss(&r.loss_nonrotating, &xy.phi)).collect();
+            (&xy.omega, mass * &xy.phi, loss)
+        }
+    };
+    let mut out: Vec<Branches> = realized.iter().map(|_| Branches::none(n_layout)).collect();
+    let mut columns: Vec<Vec<crate::linalg::c64>> = vec![];
+    let zero = crate::linalg::c64::new(0.0, 0.0);
+    let mut add = |set: &BranchSet, w: f64, loss: &[f64], mode: usize, spin: f64, col: Vec<crate::linalg::c64>, out: &mut Vec<Branches>| {
+        for (j, d) in set.rates(w).into_iter().enumerate() {
+            for (b, l) in out.iter_mut().zip(loss) {
+                let k = l * set.gamma[j];
+                b.stiffness.push(k);
+                b.main_stiffness.push(set.nu[j] * k);
+                b.rate.push(d);
+                b.spin.push(spin);
+                b.mode.push(mode);
+                b.index.push(j);
+            }
+            columns.push(col.clone());
+        }
+    };
+    let nonrotating = |i: usize, out: &mut Vec<Branches>, add: &mut dyn FnMut(&BranchSet, f64, &[f64], usize, f64, Vec<crate::linalg::c64>, &mut Vec<Branches>)| {
+        let loss: Vec<f64> = loss_n.iter().map(|l| l[i].max(0.0)).collect();
+        if loss.iter().any(|&l| l > 0.0) {
+            let col = (0..n_layout).map(|r| coupling_n[(r, i)]).collect();
+            add(&spec.nonrotating, omega_n[i], &loss, i, 0.0, col, out);
+        }
+    };
+    let rotating = |i: usize, out: &mut Vec<Branches>, add: &mut dyn FnMut(&BranchSet, f64, &[f64], usize, f64, Vec<crate::linalg::c64>, &mut Vec<Branches>)| {
+        let l = loss_r[(i, i)];
+        if l <= 0.0 {
+            return;
+        }
+        let loss = vec![l; realized.len()];
+        let copies: &[f64] = if doubled { &[1.0, -1.0] } else { &[1.0] };
+        for &spin in copies {
+            let offset = if spin > 0.0 { 0 } else { n };
+            let col = (0..n_layout)
+                .map(|r| {
+                    if r >= offset && r < offset + n {
+                        axis_coupling[(r - offset, i)]
+                    } else {
+                        zero
+                    }
+                })
+                .collect();
+            add(&spec.rotating, axis.omega[i], &loss, i, spin, col, out);
+        }
+    };
+    if doubled {
+        (0..omega_n.len()).for_each(|i| nonrotating(i, &mut out, &mut add));
+        (0..axis.omega.len()).for_each(|i| rotating(i, &mut out, &mut add));
+    } else {
+        // One damper pair per mode, in the order of the modes.
+        for i in 0..axis.omega.len() {
+            nonrotating(i, &mut out, &mut add);
+            rotating(i, &mut out, &mut add);
+        }
+    }
+    let u = CMat::from_fn(n_layout, columns.len(), |r, c| columns[c][r]);
+    for b in &mut out {
+        b.coupling = u.clone();
+    }
+    out
+}
+
+/// `(phi_i^H K'' phi_i)` of each mode.
+fn modal_loss(k_loss: &CMat, phi: &CMat) -> Vec<f64> {
+    let kp = k_loss * phi;
+    (0..phi.ncols())
+        .map(|i| (0..phi.nrows()).map(|r| (phi[(r, i)].conj() * kp[(r, i)]).re).sum())
+        .collect()
 }
 
 /// The model in modal coordinates (paper eq. 28): `Phi^T (.) Phi` of the viscous rotor (the
 /// modal gyroscopic and damping matrices full), one damper pair per retained mode on its own
 /// modal coordinate. With all modes kept its poles are those of the physical form; with fewer,
-/// it is the modally truncated rotor.
+/// it is the modally truncated rotor. Single layout, constant supports.
 pub fn modal_form(
     system: &RotorSystem,
     basis: &ModalBasis,
     spec: &NonviscousSpec,
 ) -> Result<StateModel, LinalgError> {
-    let so = SecondOrder::viscous(system).project(&basis.phi);
+    let r = Realized::at(system, 0.0);
+    let so = SecondOrder::viscous(&r).project(&basis.phi);
     let k = basis.len();
     let identity = RMat::from_fn(k, k, |i, j| if i == j { 1.0 } else { 0.0 });
-    StateModel::new(&so, &branches_on(&identity, system, basis, spec))
-}
-
-/// Branches whose coordinate for mode `i` is `coupling[:, i]^T q`.
-fn branches_on(
-    coupling: &RMat,
-    system: &RotorSystem,
-    basis: &ModalBasis,
-    spec: &NonviscousSpec,
-) -> Branches {
-    let n = coupling.nrows();
-    let participation = coupling;
     let loss_n = basis.project(&system.hysteretic_nonrotating);
     let loss_r = basis.project(&system.hysteretic_rotating);
+    let mut out = Branches::none(k);
     let mut columns: Vec<usize> = vec![];
-    let mut out = Branches::none(n);
     for (i, &w) in basis.omega.iter().enumerate() {
-        for (set, loss, rotating) in [
-            (&spec.nonrotating, loss_n[(i, i)], false),
-            (&spec.rotating, loss_r[(i, i)], true),
+        for (set, loss, spin) in [
+            (&spec.nonrotating, loss_n[(i, i)], 0.0),
+            (&spec.rotating, loss_r[(i, i)], 1.0),
         ] {
             if loss <= 0.0 {
                 continue;
             }
             for (j, d) in set.rates(w).into_iter().enumerate() {
-                let k = loss * set.gamma[j];
-                out.stiffness.push(k);
-                out.main_stiffness.push(set.nu[j] * k);
+                let kb = loss * set.gamma[j];
+                out.stiffness.push(kb);
+                out.main_stiffness.push(set.nu[j] * kb);
                 out.rate.push(d);
-                out.rotating.push(rotating);
+                out.spin.push(spin);
                 out.mode.push(i);
                 out.index.push(j);
                 columns.push(i);
             }
         }
     }
-    out.coupling = RMat::from_fn(n, columns.len(), |r, c| participation[(r, columns[c])]);
-    out
+    out.coupling = CMat::from_fn(k, columns.len(), |r, c| {
+        crate::linalg::c64::new(identity[(r, columns[c])], 0.0)
+    });
+    StateModel::new(&so, &out)
 }
 
 #[cfg(test)]

@@ -13,11 +13,10 @@
 
 use super::nonviscous::{self, BranchSet};
 use super::state::{Branches, SecondOrder, StateModel};
-use super::{DampingError, equivalent};
-use crate::fem::modal::ModalBasis;
-use crate::linalg::{self, CMat, RMat};
+use super::{Bases, DampingError, equivalent};
+use crate::linalg::{self, CMat};
 use crate::model::damping::{DampingModel, NonviscousSpec};
-use crate::system::{Dof, RotorSystem};
+use crate::system::{Dof, Realized, RotorSystem};
 
 /// What to report.
 #[derive(Debug, Clone, Default)]
@@ -30,6 +29,8 @@ pub struct Options {
     pub max_deviation: Option<f64>,
     /// Largest state size allowed.
     pub max_states: usize,
+    /// Spin speed at which tabulated supports are evaluated.
+    pub speed: f64,
 }
 
 /// An equivalent or nonviscous model as matrices, with its fit report.
@@ -40,8 +41,8 @@ pub struct ModelMatrices {
     /// First-order form and `M^-1`, when asked.
     pub state: Option<(StateModel, CMat)>,
     /// Equivalent model: `C_eq,r` and `C_eq,n` alone.
-    pub equivalent: Option<(RMat, RMat)>,
-    /// Per retained mode: natural frequency, rotating and nonrotating loss factors.
+    pub equivalent: Option<(CMat, CMat)>,
+    /// Per retained axisymmetric mode: natural frequency, rotating and nonrotating loss factors.
     pub modes: Vec<(f64, f64, f64)>,
     pub dampers: Vec<DamperFit>,
     pub added_states: usize,
@@ -101,28 +102,30 @@ pub fn matrices(
     model: &DampingModel,
     options: &Options,
 ) -> Result<ModelMatrices, ReportError> {
-    let all = ModalBasis::of(system).map_err(|e| ReportError::Damping(DampingError::Modal(e)))?;
     let (modes, nv) = match model {
         DampingModel::Equivalent { modes } => (*modes, None),
         DampingModel::Nonviscous(spec) => (spec.modes, Some(spec.clone())),
         _ => (None, None),
     };
-    let basis = modes.map_or(all.clone(), |k| all.truncated(k));
-    let loss_r = basis.project(&system.hysteretic_rotating);
-    let loss_n = basis.project(&system.hysteretic_nonrotating);
-    let mut viscous = system.clone();
+    let bases = Bases::of(system, modes).map_err(ReportError::Damping)?;
+    let r = Realized::at(system, options.speed);
+    let rotor_loss = &system.hysteretic_rotating;
+    let dampers = bases.dampers(&r, rotor_loss);
+    let mut c_n = r.damping_nonrotating.clone();
+    let mut c_r = r.damping_rotating.clone();
     let mut equivalent = None;
-    let mut branches = Branches::none(system.n());
+    let mut branches = Branches::none(r.size());
     let mut spec = None;
     if let Some(mut s) = nv {
         if let (Some(max_dev), Some(band)) = (options.max_deviation, options.band) {
-            for (side, set, loss) in [
-                ("rotating", &mut s.rotating, &loss_r),
-                ("nonrotating", &mut s.nonrotating, &loss_n),
+            for (side, set, rotating) in [
+                ("rotating", &mut s.rotating, true),
+                ("nonrotating", &mut s.nonrotating, false),
             ] {
-                let tunings: Vec<f64> = (0..basis.len())
-                    .filter(|&i| loss[(i, i)] > 0.0)
-                    .map(|i| basis.omega[i])
+                let tunings: Vec<f64> = dampers
+                    .iter()
+                    .filter(|d| d.3 == rotating)
+                    .map(|d| d.1)
                     .collect();
                 if !tunings.is_empty() {
                     *set = choose_branches(set.spacing(), band, max_dev, &tunings).map_err(
@@ -135,17 +138,25 @@ pub fn matrices(
                 }
             }
         }
-        branches = nonviscous::branches(system, &basis, &s);
+        branches = nonviscous::branches(&[&r], rotor_loss, &bases, &s)
+            .into_iter()
+            .next()
+            .expect("one realization");
         spec = Some(s);
     } else {
-        let c_r = equivalent::equivalent_matrix(&system.hysteretic_rotating, &system.mass, &basis);
-        let c_n =
-            equivalent::equivalent_matrix(&system.hysteretic_nonrotating, &system.mass, &basis);
-        viscous.damping_rotating = &viscous.damping_rotating + &c_r;
-        viscous.damping_nonrotating = &viscous.damping_nonrotating + &c_n;
-        equivalent = Some((c_r, c_n));
+        let so = equivalent::second_order(&r, rotor_loss, &bases);
+        let eq_n = &so.d0 - &(&r.damping_nonrotating + &r.damping_rotating);
+        let eq_r = r.on_blocks(&linalg::to_complex(&equivalent::equivalent_matrix(
+            rotor_loss,
+            &bases.axis_mass,
+            &bases.axis,
+        )));
+        let eq_n = &eq_n - &eq_r;
+        c_n = &c_n + &eq_n;
+        c_r = &c_r + &eq_r;
+        equivalent = Some((eq_r, eq_n));
     }
-    let states = 2 * system.n() + branches.len();
+    let states = 2 * r.size() + branches.len();
     if states > options.max_states {
         return Err(ReportError::TooLarge {
             states,
@@ -154,18 +165,18 @@ pub fn matrices(
     }
     let state = if options.state_form {
         let lin = |e: linalg::LinalgError| ReportError::Damping(DampingError::Linalg(e));
-        let sm = StateModel::new(&SecondOrder::viscous(&viscous), &branches).map_err(lin)?;
-        let n = system.n();
+        let sm = StateModel::new(&SecondOrder::with_damping(&r, &c_n, &c_r), &branches)
+            .map_err(lin)?;
+        let n = r.size();
         let identity = CMat::from_fn(n, n, |i, j| {
             linalg::c64::new(if i == j { 1.0 } else { 0.0 }, 0.0)
         });
-        Some((sm, linalg::spd_solve(&system.mass, &identity).map_err(lin)?))
+        Some((sm, linalg::mass_solve(&r.mass, &identity).map_err(lin)?))
     } else {
         None
     };
-    let aug = augmented(&viscous, &branches);
-    let finite_r = |a: &RMat| (0..a.nrows()).all(|i| (0..a.ncols()).all(|j| a[(i, j)].is_finite()));
-    let finite_c = |a: &CMat| {
+    let aug = augmented(&r, &system.dofs, &c_n, &c_r, &branches);
+    let finite = |a: &CMat| {
         (0..a.nrows())
             .all(|i| (0..a.ncols()).all(|j| a[(i, j)].re.is_finite() && a[(i, j)].im.is_finite()))
     };
@@ -177,26 +188,46 @@ pub fn matrices(
         &aug.damping_nonrotating,
     ]
     .iter()
-    .all(|a| finite_r(a))
+    .all(|a| finite(a))
         && state
             .as_ref()
-            .is_none_or(|(sm, m_inv)| finite_c(sm.a0()) && finite_c(sm.a1()) && finite_c(m_inv));
+            .is_none_or(|(sm, m_inv)| finite(sm.a0()) && finite(sm.a1()) && finite(m_inv));
     if !ok {
         return Err(ReportError::NonFinite);
     }
+    let axis = &bases.axis;
+    let loss_r = axis.project(rotor_loss);
+    let phi = linalg::to_complex(&axis.phi);
+    let r_single = Realized::at(system, options.speed);
+    let loss_n: Vec<f64> = if r_single.layout == crate::system::Layout::Single {
+        let kp = &r_single.loss_nonrotating * &phi;
+        (0..axis.len())
+            .map(|i| (0..phi.nrows()).map(|k| (phi[(k, i)].conj() * kp[(k, i)]).re).sum())
+            .collect()
+    } else {
+        // Doubled: the nonrotating loss of the x/y pair of each axisymmetric mode, averaged.
+        let xy = dampers.iter().filter(|d| !d.3);
+        let mut v = vec![0.0; axis.len()];
+        for d in xy {
+            if d.0 / 2 < v.len() {
+                v[d.0 / 2] += 0.5 * d.2;
+            }
+        }
+        v
+    };
     Ok(ModelMatrices {
         augmented: aug,
         state,
         equivalent,
-        modes: (0..basis.len())
+        modes: (0..axis.len())
             .map(|i| {
-                let k = basis.omega[i].powi(2);
-                (basis.omega[i], loss_r[(i, i)] / k, loss_n[(i, i)] / k)
+                let k = axis.omega[i].powi(2);
+                (axis.omega[i], loss_r[(i, i)] / k, loss_n[i] / k)
             })
             .collect(),
         dampers: spec
             .as_ref()
-            .map(|s| fits(system, &basis, s, options.band))
+            .map(|s| fits(&dampers, s, options.band))
             .unwrap_or_default(),
         added_states: branches.len(),
         branches: spec
@@ -208,7 +239,8 @@ pub fn matrices(
 /// A coordinate of the augmented system.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Coordinate {
-    Physical(Dof),
+    /// A physical coordinate; `conjugate`: the `conj r` copy of doubled coordinates.
+    Physical { dof: Dof, conjugate: bool },
     Internal {
         /// Mode (0-based) whose damper the branch belongs to.
         mode: usize,
@@ -220,65 +252,67 @@ pub enum Coordinate {
     },
 }
 
-/// The rotor with its nonviscous branches, in second-order form.
+/// The rotor with its nonviscous branches, in second-order form:
+/// `M q'' + (C_n + C_r - i Omega S G) q' + (K - i Omega S C_r) q = F`, `S = diag(spin)`.
 #[derive(Debug, Clone)]
 pub struct Augmented {
-    pub mass: RMat,
-    pub gyroscopic: RMat,
-    pub stiffness: RMat,
-    pub damping_rotating: RMat,
-    pub damping_nonrotating: RMat,
+    pub mass: CMat,
+    pub gyroscopic: CMat,
+    pub stiffness: CMat,
+    pub damping_rotating: CMat,
+    pub damping_nonrotating: CMat,
+    /// +1, or -1 on the `conj r` coordinates (and their rotating branches).
+    pub spin: Vec<f64>,
     pub coordinates: Vec<Coordinate>,
 }
 
-/// Appends the branches' internal coordinates to the viscous rotor.
-pub fn augmented(system: &RotorSystem, br: &Branches) -> Augmented {
-    let (n, p) = (system.n(), br.len());
-    let pad = |a: &RMat| {
-        RMat::from_fn(
-            n + p,
-            n + p,
-            |i, j| if i < n && j < n { a[(i, j)] } else { 0.0 },
-        )
-    };
-    let mut stiffness = pad(&system.stiffness());
-    let mut c_r = pad(&system.damping_rotating);
-    let mut c_n = pad(&system.damping_nonrotating);
+/// Appends the branches' internal coordinates to the viscous rotor `(r, c_n, c_r)`.
+pub fn augmented(r: &Realized, dofs: &[Dof], c_n: &CMat, c_r: &CMat, br: &Branches) -> Augmented {
+    let (n, p) = (r.size(), br.len());
+    let zero = linalg::c64::new(0.0, 0.0);
+    let pad = |a: &CMat| CMat::from_fn(n + p, n + p, |i, j| if i < n && j < n { a[(i, j)] } else { zero });
+    let mut stiffness = pad(&r.stiffness);
+    let mut c_r = pad(c_r);
+    let mut c_n = pad(c_n);
+    let mut spin = r.spin.clone();
     for j in 0..p {
         let (k, y) = (br.stiffness[j], n + j);
-        for r in 0..n {
+        for row in 0..n {
             for c in 0..n {
-                stiffness[(r, c)] +=
-                    br.coupling[(r, j)] * br.main_stiffness[j] * br.coupling[(c, j)];
+                stiffness[(row, c)] +=
+                    br.coupling[(row, j)] * br.main_stiffness[j] * br.coupling[(c, j)].conj();
             }
-            stiffness[(r, y)] = -br.coupling[(r, j)] * k;
-            stiffness[(y, r)] = -br.coupling[(r, j)] * k;
+            stiffness[(row, y)] = -br.coupling[(row, j)] * k;
+            stiffness[(y, row)] = -br.coupling[(row, j)].conj() * k;
         }
-        stiffness[(y, y)] = k;
-        let c = k / br.rate[j];
-        if br.rotating[j] {
+        stiffness[(y, y)] = linalg::c64::new(k, 0.0);
+        let c = linalg::c64::new(k / br.rate[j], 0.0);
+        if br.rotating(j) {
             c_r[(y, y)] = c;
         } else {
             c_n[(y, y)] = c;
         }
+        spin.push(if br.spin[j] < 0.0 { -1.0 } else { 1.0 });
     }
-    let mut coordinates: Vec<Coordinate> = system
-        .dofs
-        .iter()
-        .map(|d| Coordinate::Physical(*d))
+    let mut coordinates: Vec<Coordinate> = (0..n)
+        .map(|i| Coordinate::Physical {
+            dof: dofs[i % dofs.len()],
+            conjugate: i >= dofs.len(),
+        })
         .collect();
     coordinates.extend((0..p).map(|j| Coordinate::Internal {
         mode: br.mode[j],
         branch: br.index[j],
-        rotating: br.rotating[j],
+        rotating: br.rotating(j),
         rate: br.rate[j],
     }));
     Augmented {
-        mass: pad(&system.mass),
-        gyroscopic: pad(&system.gyroscopic),
+        mass: pad(&r.mass),
+        gyroscopic: pad(&r.gyroscopic),
         stiffness,
         damping_rotating: c_r,
         damping_nonrotating: c_n,
+        spin,
         coordinates,
     }
 }
@@ -338,59 +372,56 @@ pub fn deviation(set: &BranchSet, w0: f64, band: [f64; 2]) -> (f64, f64) {
     (max, (sum / SAMPLES as f64).sqrt())
 }
 
-/// Every damper of the model: one per retained mode and side with a nonzero loss.
+/// Every damper of the model: one per retained mode and side with a nonzero loss, given as
+/// `(mode, w0, loss stiffness, rotating)`.
 pub fn fits(
-    system: &RotorSystem,
-    basis: &ModalBasis,
+    dampers: &[(usize, f64, f64, bool)],
     spec: &NonviscousSpec,
     band: Option<[f64; 2]>,
 ) -> Vec<DamperFit> {
-    let loss_n = basis.project(&system.hysteretic_nonrotating);
-    let loss_r = basis.project(&system.hysteretic_rotating);
     let mut out = vec![];
-    for (i, &w0) in basis.omega.iter().enumerate() {
-        for (set, loss, rotating) in [
-            (&spec.nonrotating, loss_n[(i, i)], false),
-            (&spec.rotating, loss_r[(i, i)], true),
-        ] {
-            if loss <= 0.0 {
-                continue;
-            }
-            let eta = loss / (w0 * w0);
-            let band = band.unwrap_or_else(|| default_band(set, w0));
-            let (max_deviation, rms_deviation) = deviation(set, w0, band);
-            let storage = |w: f64| storage_change(set, eta, w, w0);
-            let all: Vec<f64> = log_space(band, SAMPLES).collect();
-            let rates = set.rates(w0);
-            let spring: Vec<f64> = set.gamma().iter().map(|g| loss * g).collect();
-            out.push(DamperFit {
-                mode: i,
-                rotating,
-                tuning_frequency: w0,
-                loss_factor: eta,
-                branches: set.count(),
-                spacing: set.spacing(),
-                damper: spring.iter().zip(&rates).map(|(k, d)| k / d).collect(),
-                spring,
-                relaxation_rates: rates,
-                band,
-                max_deviation,
-                rms_deviation,
-                storage_change_at_tuning: storage(w0),
-                max_storage_change: all.iter().map(|&w| storage(w).abs()).fold(0.0, f64::max),
-                added_states: set.count(),
-                samples: all
-                    .iter()
-                    .step_by(10)
-                    .map(|&w| FitSample {
-                        frequency: w,
-                        loss_factor: eta * set.relative_loss(w, w0),
-                        storage_change: storage(w),
-                    })
-                    .collect(),
-            });
-        }
+    for &(i, w0, loss, rotating) in dampers {
+        let set = if rotating {
+            &spec.rotating
+        } else {
+            &spec.nonrotating
+        };
+        let eta = loss / (w0 * w0);
+        let band = band.unwrap_or_else(|| default_band(set, w0));
+        let (max_deviation, rms_deviation) = deviation(set, w0, band);
+        let storage = |w: f64| storage_change(set, eta, w, w0);
+        let all: Vec<f64> = log_space(band, SAMPLES).collect();
+        let rates = set.rates(w0);
+        let spring: Vec<f64> = set.gamma().iter().map(|g| loss * g).collect();
+        out.push(DamperFit {
+            mode: i,
+            rotating,
+            tuning_frequency: w0,
+            loss_factor: eta,
+            branches: set.count(),
+            spacing: set.spacing(),
+            damper: spring.iter().zip(&rates).map(|(k, d)| k / d).collect(),
+            spring,
+            relaxation_rates: rates,
+            band,
+            max_deviation,
+            rms_deviation,
+            storage_change_at_tuning: storage(w0),
+            max_storage_change: all.iter().map(|&w| storage(w).abs()).fold(0.0, f64::max),
+            added_states: set.count(),
+            samples: all
+                .iter()
+                .step_by(10)
+                .map(|&w| FitSample {
+                    frequency: w,
+                    loss_factor: eta * set.relative_loss(w, w0),
+                    storage_change: storage(w),
+                })
+                .collect(),
+        });
     }
+    // Single layout: one damper pair per mode, in the order of the modes.
+    out.sort_by_key(|d| (d.mode, d.rotating));
     out
 }
 

@@ -4,49 +4,57 @@
 //! Physical coordinates `x` (n, with mass), internal coordinates `y` (p, massless):
 //!
 //! ```text
-//! M x'' + D(Omega) x' + (K(Omega) + U diag(nu k) U^T) x - U diag(k) y = F
-//!                                   y' = (-d + i Omega rho) y + d (U^T x)
+//! M x'' + D(Omega) x' + (K(Omega) + U diag(nu k) U^H) x - U diag(k) y = F
+//!                                   y' = (-d + i Omega rho) y + d (U^H x)
 //! ```
 //!
-//! The second line is the Maxwell branch `c_j (y_j' - i Omega rho_j y_j) + k_j (y_j - u_j^T x) = 0`
-//! divided by `c_j = k_j / d_j` (`rho_j = 1` for a rotating branch, 0 otherwise). With
+//! The second line is the Maxwell branch `c_j (y_j' - i Omega rho_j y_j) + k_j (y_j - u_j^H x) = 0`
+//! divided by `c_j = k_j / d_j` (`rho_j = 1` for a rotating branch on `r`, -1 for one on
+//! `conj r` in doubled coordinates, 0 for a nonrotating one; `U` is real in the coordinates
+//! `r` alone). With
 //! `v = x'` the state `z = [v, x, y]` has `2n + p` entries, not `2(n + p)`, and
 //! `z' = A(Omega) z` with `A = A0 + Omega A1` (`D = D0 + Omega D1`, `K = K0 + Omega K1`).
 
 use crate::linalg::{self, CMat, LinalgError, RMat, c64};
-use crate::system::RotorSystem;
+use crate::system::Realized;
 
 /// `M x'' + (D0 + Omega D1) x' + (K0 + Omega K1) x = F`, complex coefficients.
 #[derive(Debug, Clone)]
 pub struct SecondOrder {
-    pub mass: RMat,
+    pub mass: CMat,
     pub d0: CMat,
     pub d1: CMat,
     pub k0: CMat,
     pub k1: CMat,
-    /// Real stiffness, kept to classify poles by where their energy lies.
-    pub stiffness: RMat,
+    /// Hermitian part of the stiffness, kept to classify poles by where their energy lies.
+    pub stiffness: CMat,
+}
+
+/// `(A + A^H) / 2`.
+pub fn hermitian_part(a: &CMat) -> CMat {
+    CMat::from_fn(a.nrows(), a.ncols(), |i, j| (a[(i, j)] + a[(j, i)].conj()) * 0.5)
 }
 
 impl SecondOrder {
-    /// The rotor with its viscous damping only: `D = C_n + C_r - i Omega G`,
-    /// `K = K - i Omega C_r`.
-    pub fn viscous(s: &RotorSystem) -> Self {
-        Self::with_damping(s, &s.damping_nonrotating, &s.damping_rotating)
+    /// The rotor with its viscous damping only: `D = C_n + C_r - i Omega spin G`,
+    /// `K = K - i Omega spin C_r` (`spin` is -1 on the conjugate rows of doubled coordinates).
+    pub fn viscous(r: &Realized) -> Self {
+        Self::with_damping(r, &r.damping_nonrotating, &r.damping_rotating)
     }
 
     /// The rotor with the given nonrotating and rotating viscous damping matrices.
-    pub fn with_damping(s: &RotorSystem, c_n: &RMat, c_r: &RMat) -> Self {
-        let n = s.n();
-        let k = s.stiffness();
+    pub fn with_damping(r: &Realized, c_n: &CMat, c_r: &CMat) -> Self {
         let i = c64::new(0.0, 1.0);
+        let g = r.spun(&r.gyroscopic);
+        let cr = r.spun(c_r);
+        let n = r.size();
         SecondOrder {
-            mass: s.mass.clone(),
-            d0: linalg::to_complex(&(c_n + c_r)),
-            d1: CMat::from_fn(n, n, |r, c| -i * s.gyroscopic[(r, c)]),
-            k0: linalg::to_complex(&k),
-            k1: CMat::from_fn(n, n, |r, c| -i * c_r[(r, c)]),
-            stiffness: k,
+            mass: r.mass.clone(),
+            d0: c_n + c_r,
+            d1: CMat::from_fn(n, n, |a, b| -i * g[(a, b)]),
+            k0: r.stiffness.clone(),
+            k1: CMat::from_fn(n, n, |a, b| -i * cr[(a, b)]),
+            stiffness: hermitian_part(&r.stiffness),
         }
     }
 
@@ -54,18 +62,19 @@ impl SecondOrder {
         self.mass.nrows()
     }
 
-    /// `Phi^T (.) Phi` of every matrix: the system in the coordinates `q = Phi eta`.
+    /// `Phi^T (.) Phi` of every matrix: the system in the coordinates `q = Phi eta` (a real
+    /// basis of the single layout).
     pub fn project(&self, phi: &RMat) -> SecondOrder {
         let pc = linalg::to_complex(phi);
         let pt = pc.transpose().to_owned();
         let c = |a: &CMat| &pt * a * &pc;
         SecondOrder {
-            mass: phi.transpose() * &self.mass * phi,
+            mass: c(&self.mass),
             d0: c(&self.d0),
             d1: c(&self.d1),
             k0: c(&self.k0),
             k1: c(&self.k1),
-            stiffness: phi.transpose() * &self.stiffness * phi,
+            stiffness: c(&self.stiffness),
         }
     }
 }
@@ -73,16 +82,18 @@ impl SecondOrder {
 /// Maxwell branches on massless internal coordinates (see the module docs).
 #[derive(Debug, Clone)]
 pub struct Branches {
-    /// `U`: column j maps physical coordinates to the coordinate branch j acts on.
-    pub coupling: RMat,
+    /// `U`: column j maps physical coordinates to the coordinate branch j acts on,
+    /// `u_j^H x` (real in the single layout).
+    pub coupling: CMat,
     /// Branch spring stiffness `k_j`.
     pub stiffness: Vec<f64>,
     /// Stiffness `nu_j k_j` the branch adds on its main coordinate.
     pub main_stiffness: Vec<f64>,
     /// Relaxation rate `d_j = k_j / c_j`, 1/s.
     pub rate: Vec<f64>,
-    /// Whether the branch's damper is in the rotor (circulatory term on `y_j`).
-    pub rotating: Vec<bool>,
+    /// `rho_j`: 0 for a nonrotating branch; for a rotating one, whose damper is in the rotor,
+    /// +1 on `r` and -1 on `conj r` (the internal equation's `+i Omega rho_j y_j`).
+    pub spin: Vec<f64>,
     /// Mode (0-based) whose damper the branch belongs to.
     pub mode: Vec<usize>,
     /// Index j (0-based) of the branch within its damper.
@@ -93,11 +104,11 @@ impl Branches {
     /// No internal coordinates.
     pub fn none(n: usize) -> Self {
         Branches {
-            coupling: RMat::zeros(n, 0),
+            coupling: CMat::zeros(n, 0),
             stiffness: vec![],
             main_stiffness: vec![],
             rate: vec![],
-            rotating: vec![],
+            spin: vec![],
             mode: vec![],
             index: vec![],
         }
@@ -110,16 +121,26 @@ impl Branches {
     pub fn is_empty(&self) -> bool {
         self.stiffness.is_empty()
     }
+
+    /// Whether branch `j` is rotating.
+    pub fn rotating(&self, j: usize) -> bool {
+        self.spin[j] != 0.0
+    }
 }
 
-/// `z' = (A0 + Omega A1) z`, `z = [v, x, y]`.
+/// `z' = (A0(Omega) + Omega A1(Omega)) z`, `z = [v, x, y]`. `A0` and `A1` are constant, or,
+/// for supports tabulated against speed, given at the table's speeds and linear between
+/// them (held outside): exact when the mass coefficients are constant, since every other
+/// coefficient enters the state matrix linearly.
 #[derive(Debug, Clone)]
 pub struct StateModel {
-    a0: CMat,
-    a1: CMat,
+    /// Speeds of the table (one entry, ignored, for constant coefficients).
+    points: Vec<f64>,
+    a0: Vec<CMat>,
+    a1: Vec<CMat>,
     n: usize,
     branches: Branches,
-    stiffness: RMat,
+    stiffness: CMat,
 }
 
 impl StateModel {
@@ -128,13 +149,14 @@ impl StateModel {
         let p = br.len();
         let size = 2 * n + p;
         let u = &br.coupling;
-        // Right-hand sides for one SPD solve with M: [D0 | K0 + U nu k U^T | U k | D1 | K1].
+        let real = |x: f64| c64::new(x, 0.0);
+        // Right-hand sides for one solve with M: [D0 | K0 + U nu k U^H | U k | D1 | K1].
         let mut rhs = CMat::zeros(n, 4 * n + p);
         for r in 0..n {
             for c in 0..n {
-                let mut kadd = 0.0;
+                let mut kadd = c64::new(0.0, 0.0);
                 for j in 0..p {
-                    kadd += u[(r, j)] * br.main_stiffness[j] * u[(c, j)];
+                    kadd += u[(r, j)] * br.main_stiffness[j] * u[(c, j)].conj();
                 }
                 rhs[(r, c)] = so.d0[(r, c)];
                 rhs[(r, n + c)] = so.k0[(r, c)] + kadd;
@@ -142,10 +164,10 @@ impl StateModel {
                 rhs[(r, 3 * n + p + c)] = so.k1[(r, c)];
             }
             for j in 0..p {
-                rhs[(r, 2 * n + j)] = c64::new(u[(r, j)] * br.stiffness[j], 0.0);
+                rhs[(r, 2 * n + j)] = u[(r, j)] * br.stiffness[j];
             }
         }
-        let sol = linalg::spd_solve(&so.mass, &rhs)?;
+        let sol = linalg::mass_solve(&so.mass, &rhs)?;
         let mut a0 = CMat::zeros(size, size);
         let mut a1 = CMat::zeros(size, size);
         for r in 0..n {
@@ -158,40 +180,92 @@ impl StateModel {
             for j in 0..p {
                 a0[(r, 2 * n + j)] = sol[(r, 2 * n + j)];
             }
-            a0[(n + r, r)] = c64::new(1.0, 0.0);
+            a0[(n + r, r)] = real(1.0);
         }
         for j in 0..p {
             let d = br.rate[j];
             for c in 0..n {
-                a0[(2 * n + j, n + c)] = c64::new(d * u[(c, j)], 0.0);
+                a0[(2 * n + j, n + c)] = u[(c, j)].conj() * d;
             }
-            a0[(2 * n + j, 2 * n + j)] = c64::new(-d, 0.0);
-            if br.rotating[j] {
-                a1[(2 * n + j, 2 * n + j)] = c64::new(0.0, 1.0);
-            }
+            a0[(2 * n + j, 2 * n + j)] = real(-d);
+            a1[(2 * n + j, 2 * n + j)] = c64::new(0.0, br.spin[j]);
         }
         Ok(StateModel {
-            a0,
-            a1,
+            points: vec![0.0],
+            a0: vec![a0],
+            a1: vec![a1],
             n,
             branches: br.clone(),
             stiffness: so.stiffness.clone(),
         })
     }
 
-    /// `A0`: the state matrix at rest.
-    pub fn a0(&self) -> &CMat {
-        &self.a0
+    /// The models at the speeds of a table, as one (their structure must agree).
+    pub fn table(speeds: &[f64], models: Vec<StateModel>) -> Self {
+        debug_assert_eq!(speeds.len(), models.len());
+        let mut it = models.into_iter();
+        let mut first = it.next().expect("a table has points");
+        for m in it {
+            first.a0.push(m.a0.into_iter().next().expect("one"));
+            first.a1.push(m.a1.into_iter().next().expect("one"));
+        }
+        first.points = speeds.to_vec();
+        first
     }
 
-    /// `A1 = dA/dOmega`.
+    /// Whether the model changes with the speed beyond `Omega A1`.
+    pub fn tabulated(&self) -> bool {
+        self.points.len() > 1
+    }
+
+    /// The table's segment and weight at `speed`: `A = (1 - t) A[k] + t A[k + 1]`.
+    fn segment(&self, speed: f64) -> (usize, f64) {
+        let w = &self.points;
+        let last = w.len() - 1;
+        if last == 0 || speed <= w[0] {
+            return (0, 0.0);
+        }
+        if speed >= w[last] {
+            return (last, 0.0);
+        }
+        let k = w.partition_point(|&x| x <= speed) - 1;
+        (k, (speed - w[k]) / (w[k + 1] - w[k]))
+    }
+
+    /// `A0` and `A1` at rest (the first table point).
+    pub fn a0(&self) -> &CMat {
+        &self.a0[0]
+    }
+
     pub fn a1(&self) -> &CMat {
-        &self.a1
+        &self.a1[0]
     }
 
     /// The state matrix at spin speed `speed`.
     pub fn at(&self, speed: f64) -> CMat {
-        &self.a0 + faer_scale(speed, &self.a1)
+        let (k, t) = self.segment(speed);
+        let size = self.size();
+        if t == 0.0 {
+            let (a0, a1) = (&self.a0[k], &self.a1[k]);
+            return CMat::from_fn(size, size, |i, j| a0[(i, j)] + a1[(i, j)] * speed);
+        }
+        let (a0, a1, b0, b1) = (&self.a0[k], &self.a1[k], &self.a0[k + 1], &self.a1[k + 1]);
+        let s = 1.0 - t;
+        CMat::from_fn(size, size, |i, j| {
+            (a0[(i, j)] + a1[(i, j)] * speed) * s + (b0[(i, j)] + b1[(i, j)] * speed) * t
+        })
+    }
+
+    /// `A(speed) x` without forming `A`.
+    pub fn apply(&self, speed: f64, x: &[c64]) -> Vec<c64> {
+        let (k, t) = self.segment(speed);
+        let mut y = matvec(&self.a0[k], x, 1.0 - t);
+        add_matvec(&mut y, &self.a1[k], x, speed * (1.0 - t));
+        if t != 0.0 {
+            add_matvec(&mut y, &self.a0[k + 1], x, t);
+            add_matvec(&mut y, &self.a1[k + 1], x, speed * t);
+        }
+        y
     }
 
     /// Physical complex degrees of freedom.
@@ -228,7 +302,7 @@ impl StateModel {
             let ux: c64 = x
                 .iter()
                 .enumerate()
-                .map(|(c, xc)| self.branches.coupling[(c, j)] * xc)
+                .map(|(c, xc)| self.branches.coupling[(c, j)].conj() * xc)
                 .sum();
             e_branch += self.branches.stiffness[j] * (yj - ux).norm_sqr();
         }
@@ -239,16 +313,40 @@ impl StateModel {
             1.0
         }
     }
+
+    /// The branches (internal coordinates).
+    pub fn branches(&self) -> &Branches {
+        &self.branches
+    }
 }
 
-fn faer_scale(s: f64, a: &CMat) -> CMat {
-    CMat::from_fn(a.nrows(), a.ncols(), |i, j| a[(i, j)] * s)
+fn matvec(a: &CMat, x: &[c64], f: f64) -> Vec<c64> {
+    let mut y = vec![c64::new(0.0, 0.0); a.nrows()];
+    add_matvec(&mut y, a, x, f);
+    y
+}
+
+/// `y += f A x`, skipping zero entries of `x`.
+fn add_matvec(y: &mut [c64], a: &CMat, x: &[c64], f: f64) {
+    if f == 0.0 {
+        return;
+    }
+    for (j, &xj) in x.iter().enumerate() {
+        if xj.re == 0.0 && xj.im == 0.0 {
+            continue;
+        }
+        let xf = xj * f;
+        for (i, yi) in y.iter_mut().enumerate() {
+            *yi += a[(i, j)] * xf;
+        }
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::model::rotor::Jeffcott;
+    use crate::system::RotorSystem;
 
     #[test]
     fn viscous_jeffcott_state_matrix_is_the_textbook_one() {
@@ -266,7 +364,8 @@ mod tests {
         )
         .unwrap();
         let s = RotorSystem::jeffcott(&j);
-        let m = StateModel::new(&SecondOrder::viscous(&s), &Branches::none(1)).unwrap();
+        let r = Realized::at(&s, 0.0);
+        let m = StateModel::new(&SecondOrder::viscous(&r), &Branches::none(1)).unwrap();
         let a = m.at(3.0);
         assert!((a[(0, 0)] - c64::new(-0.3, 0.0)).norm() < 1e-15);
         assert!((a[(0, 1)] - c64::new(-4.0, 0.3)).norm() < 1e-15);

@@ -11,7 +11,7 @@ use super::guyan;
 use crate::linalg::{LinalgError, RMat};
 use crate::model::api::GuyanKeep;
 use crate::model::rotor::{BeamRotor, MatrixRotor, ShaftElement};
-use crate::system::{Dof, DofKind, RotorSystem};
+use crate::system::{Dof, DofKind, PlacedSupport, RotorSystem};
 
 /// The section of an element, with Cowper's shear factor where none was given.
 pub fn section(e: &ShaftElement) -> Section {
@@ -52,6 +52,7 @@ pub fn beam(rotor: &BeamRotor) -> Result<RotorSystem, LinalgError> {
                 },
             })
             .collect(),
+        supports: vec![],
     };
     for (e, el) in rotor.elements().iter().enumerate() {
         let sec = section(el);
@@ -73,17 +74,27 @@ pub fn beam(rotor: &BeamRotor) -> Result<RotorSystem, LinalgError> {
         s.damping_nonrotating[(r, r)] += sup.damping;
         s.hysteretic_nonrotating[(r, r)] += sup.loss_factor * sup.stiffness;
     }
-    match rotor.guyan() {
-        None => Ok(s),
+    let mut s = match rotor.guyan() {
+        None => s,
         Some(GuyanKeep::Translations) => {
             let keep: Vec<bool> = s
                 .dofs
                 .iter()
                 .map(|d| d.kind == DofKind::Translation)
                 .collect();
-            guyan::reduce(&s, &keep)
+            guyan::reduce(&s, &keep)?
         }
-    }
+    };
+    // General supports act on translations, which Guyan reduction keeps: place them after it.
+    s.supports = rotor
+        .general_supports()
+        .iter()
+        .map(|g| PlacedSupport {
+            dof: s.translation(g.node).expect("validated: every node has a translation"),
+            support: g.clone(),
+        })
+        .collect();
+    Ok(s)
 }
 
 /// A rotor given as matrices: the stiffness counts as nonrotating (only damping and loss
@@ -103,6 +114,14 @@ pub fn matrices(m: &MatrixRotor) -> RotorSystem {
             .map(|i| Dof {
                 node: i,
                 kind: DofKind::Translation,
+            })
+            .collect(),
+        supports: m
+            .general_supports
+            .iter()
+            .map(|g| PlacedSupport {
+                dof: g.node,
+                support: g.clone(),
             })
             .collect(),
     }

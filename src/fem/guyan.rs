@@ -37,6 +37,16 @@ pub fn reduce(system: &RotorSystem, keep: &[bool]) -> Result<RotorSystem, Linalg
         hysteretic_rotating: red(&system.hysteretic_rotating),
         hysteretic_nonrotating: red(&system.hysteretic_nonrotating),
         dofs: kept.iter().map(|&i| system.dofs[i]).collect(),
+        supports: system
+            .supports
+            .iter()
+            .filter_map(|p| {
+                kept.iter().position(|&i| i == p.dof).map(|dof| crate::system::PlacedSupport {
+                    dof,
+                    support: p.support.clone(),
+                })
+            })
+            .collect(),
     })
 }
 

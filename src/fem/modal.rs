@@ -4,8 +4,8 @@
 //! back is `Mbar^-1 Phi*^T M = Phi*^T M` (mass-normalised), which is `Phi^-1` when all modes are
 //! kept; so one formula serves the full and the reduced mode sets (paper eq. 7 and after).
 
-use crate::linalg::{self, LinalgError, RMat};
-use crate::system::{Dof, DofKind, RotorSystem};
+use crate::linalg::{self, CMat, LinalgError, RMat};
+use crate::system::{Dof, DofKind, Layout, Realized, RotorSystem};
 
 /// Mass-normalised undamped modes of the nonrotating rotor, lowest first.
 #[derive(Debug, Clone)]
@@ -41,10 +41,18 @@ impl std::fmt::Display for ModalError {
 }
 
 impl ModalBasis {
-    /// All modes of `(K, M)`, `K` the total stiffness.
+    /// All modes of `(K, M)`, `K` the total stiffness. Supports in the general form count
+    /// with the symmetric parts of their coefficients at rest, averaged over the directions:
+    /// these are the rotor's own axisymmetric modes, the basis of its rotating damping.
     pub fn of(system: &RotorSystem) -> Result<Self, ModalError> {
-        let k = system.stiffness();
-        let modes = linalg::symmetric_modes(&k, &system.mass).map_err(ModalError::Linalg)?;
+        let (k, m) = if system.supports.is_empty() {
+            (system.stiffness(), system.mass.clone())
+        } else {
+            let (k, m) = Realized::undamped(system, Layout::Single);
+            let re = |a: &CMat| RMat::from_fn(a.nrows(), a.ncols(), |i, j| a[(i, j)].re);
+            (re(&k), re(&m))
+        };
+        let modes = linalg::symmetric_modes(&k, &m).map_err(ModalError::Linalg)?;
         // A rigid-body mode has w^2 ~ 0 relative to the largest; equivalent and nonviscous
         // damping divide by w, so refuse it here rather than produce infinities.
         let largest = modes.omega_squared.iter().cloned().fold(0.0, f64::max);
@@ -177,6 +185,44 @@ impl ModalBasis {
     }
 }
 
+/// Mass-normalised undamped modes in doubled coordinates: the real x/y modes of a rotor on
+/// supports that are not isotropic, as vectors `(a, conj a)` of `(r, conj r)`
+/// (`phi^H M phi = I`), lowest first. The basis of the nonrotating damping there.
+#[derive(Debug, Clone)]
+pub struct HermitianBasis {
+    pub omega: Vec<f64>,
+    pub phi: CMat,
+}
+
+impl HermitianBasis {
+    pub fn of(system: &RotorSystem) -> Result<Self, ModalError> {
+        let (k, m) = Realized::undamped(system, Layout::Doubled);
+        let modes = linalg::hermitian_modes(&k, &m).map_err(ModalError::Linalg)?;
+        let largest = modes.omega_squared.iter().cloned().fold(0.0, f64::max);
+        for (i, &w2) in modes.omega_squared.iter().enumerate() {
+            if w2 <= 1e-11 * largest || w2 <= 0.0 {
+                return Err(ModalError::RigidBody {
+                    mode: i + 1,
+                    omega_squared: w2,
+                });
+            }
+        }
+        Ok(HermitianBasis {
+            omega: modes.omega_squared.iter().map(|w2| w2.sqrt()).collect(),
+            phi: modes.phi,
+        })
+    }
+
+    /// The lowest `count` modes.
+    pub fn truncated(&self, count: usize) -> Self {
+        let count = count.min(self.omega.len());
+        HermitianBasis {
+            omega: self.omega[..count].to_vec(),
+            phi: self.phi.subcols(0, count).to_owned(),
+        }
+    }
+}
+
 /// `sqrt(v^T M v)`.
 fn mass_norm(m: &RMat, v: &[f64]) -> f64 {
     let n = v.len();
@@ -221,6 +267,8 @@ impl ModalBasis {
                     kind: DofKind::Mode,
                 })
                 .collect(),
+            // Only rotors without general supports are reduced (see `analysis::reduction`).
+            supports: vec![],
         }
     }
 

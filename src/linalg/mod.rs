@@ -197,6 +197,54 @@ pub fn symmetric_modes(k: &RMat, m: &RMat) -> Result<SymmetricModes, LinalgError
     Ok(SymmetricModes { omega_squared, phi })
 }
 
+/// Modes of the Hermitian pencil `K phi = w^2 M phi`, `M` Hermitian positive definite:
+/// `phi^H M phi = I`, `phi^H K phi = diag(w^2)` (by Cholesky, as [`symmetric_modes`]).
+pub struct HermitianModes {
+    /// Eigenvalues `w^2`, ascending.
+    pub omega_squared: Vec<f64>,
+    pub phi: CMat,
+}
+
+/// Solves `K phi = w^2 M phi` for Hermitian `K` and `M`.
+pub fn hermitian_modes(k: &CMat, m: &CMat) -> Result<HermitianModes, LinalgError> {
+    if !all_finite_c(k) || !all_finite_c(m) {
+        return Err(LinalgError::NonFinite);
+    }
+    let n = k.nrows();
+    let mh = CMat::from_fn(n, n, |i, j| (m[(i, j)] + m[(j, i)].conj()) * 0.5);
+    let llt = mh
+        .llt(Side::Lower)
+        .map_err(|_| LinalgError::NotPositiveDefinite)?;
+    let l = llt.L().to_owned();
+    let mut x = k.clone();
+    l.as_ref().solve_lower_triangular_in_place(x.as_mut()); // L^-1 K
+    let mut a = x.adjoint().to_owned(); // K L^-H
+    l.as_ref().solve_lower_triangular_in_place(a.as_mut()); // L^-1 K L^-H
+    let a = CMat::from_fn(n, n, |i, j| (a[(i, j)] + a[(j, i)].conj()) * 0.5);
+    let e = a
+        .self_adjoint_eigen(Side::Lower)
+        .map_err(|_| LinalgError::NoConvergence)?;
+    let s = e.S().column_vector();
+    let omega_squared: Vec<f64> = (0..n).map(|i| s[i].re).collect();
+    let mut phi = e.U().to_owned();
+    l.as_ref().adjoint().solve_upper_triangular_in_place(phi.as_mut());
+    if omega_squared.iter().any(|v| !v.is_finite()) || !all_finite_c(&phi) {
+        return Err(LinalgError::NonFinite);
+    }
+    Ok(HermitianModes { omega_squared, phi })
+}
+
+/// `M^-1 B` for a mass matrix: by Cholesky when it is real (symmetric positive definite), by
+/// LU when supports made it complex.
+pub fn mass_solve(m: &CMat, b: &CMat) -> Result<CMat, LinalgError> {
+    let n = m.nrows();
+    let real = (0..n).all(|j| (0..n).all(|i| m[(i, j)].im == 0.0));
+    if real {
+        return spd_solve(&RMat::from_fn(n, n, |i, j| m[(i, j)].re), b);
+    }
+    solve_complex(m, b)
+}
+
 /// `M^-1 B` for a symmetric positive definite `M` and a complex right-hand side.
 pub fn spd_solve(m: &RMat, b: &CMat) -> Result<CMat, LinalgError> {
     let mc = to_complex(m);

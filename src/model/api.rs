@@ -73,7 +73,7 @@ pub struct BeamInput {
     /// Rigid disks.
     #[serde(default)]
     pub disks: Vec<DiskInput>,
-    /// Isotropic, nonrotating supports (bearings) on translations.
+    /// Nonrotating supports (bearings, seals) on translations: isotropic or general.
     #[serde(default)]
     pub supports: Vec<SupportInput>,
     /// Optional Guyan reduction: `{"guyan": "translations"}` keeps the translations and
@@ -143,23 +143,80 @@ pub struct DiskInput {
     pub transverse_inertia: f64,
 }
 
-/// An isotropic support (bearing) acting on the translation of a node; nonrotating.
-#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+/// A support (bearing, seal, pedestal) on the translation of a node; nonrotating. Either the
+/// isotropic form `{node, stiffness, damping, loss_factor}` or the general form
+/// `{node, kxx, kxy, kyx, kyy, cxx, cxy, cyx, cyy, mxx, mxy, myx, myy, loss_factor, speeds}`:
+/// force on the shaft `f = -K [x, y] - C [x', y'] - M [x'', y'']`, `K = [[kxx, kxy], [kyx, kyy]]`
+/// (ROSS and API 684). Omitted coefficients are 0, except `kyy` and `cyy`, which default to
+/// `kxx` and `cxx`. With `speeds` (increasing, rad/s) every coefficient may be an array of as
+/// many values: linear in the spin speed between them, held at the end values outside.
+#[derive(Debug, Clone, Default, Deserialize, Serialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SupportInput {
     #[schema(minimum = 0)]
     pub node: i64,
-    /// Stiffness, N/m (>= 0).
+    /// Isotropic form: stiffness, N/m.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stiffness: Option<f64>,
+    /// Isotropic form: viscous damping, N s/m (>= 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schema(minimum = 0.0)]
-    pub stiffness: f64,
-    /// Viscous damping, N s/m (>= 0).
-    #[serde(default)]
-    #[schema(minimum = 0.0)]
-    pub damping: f64,
-    /// Loss factor of the support: nonrotating hysteretic damping, in [0, 1).
-    #[serde(default)]
+    pub damping: Option<f64>,
+    /// Loss factor: nonrotating hysteretic damping `loss_factor` times the (symmetric part of
+    /// the) stiffness, in [0, 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schema(minimum = 0.0, exclusive_maximum = 1.0)]
-    pub loss_factor: f64,
+    pub loss_factor: Option<f64>,
+    /// General form: stiffness coefficients, N/m.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub kxx: Option<Coefficient>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub kxy: Option<Coefficient>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub kyx: Option<Coefficient>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub kyy: Option<Coefficient>,
+    /// General form: damping coefficients, N s/m.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cxx: Option<Coefficient>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cxy: Option<Coefficient>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cyx: Option<Coefficient>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cyy: Option<Coefficient>,
+    /// General form: mass coefficients, kg.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mxx: Option<Coefficient>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mxy: Option<Coefficient>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub myx: Option<Coefficient>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub myy: Option<Coefficient>,
+    /// Spin speeds of a table of coefficients, rad/s, increasing (2 to 64 of them).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub speeds: Option<Vec<f64>>,
+}
+
+/// A support coefficient: one number, or one per speed of the support's `speeds`.
+#[derive(Debug, Clone, Serialize, ToSchema)]
+#[serde(untagged)]
+pub enum Coefficient {
+    Number(f64),
+    Table(Vec<f64>),
+}
+
+impl<'de> Deserialize<'de> for Coefficient {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        match Value::deserialize(d)? {
+            v @ Value::Number(_) => variant(v).map(Coefficient::Number),
+            v @ Value::Array(_) => variant(v).map(Coefficient::Table),
+            _ => Err(serde::de::Error::custom(
+                "must be a number or an array of numbers (one per speed of `speeds`)",
+            )),
+        }
+    }
 }
 
 /// Model reduction.
@@ -201,6 +258,11 @@ pub struct MatricesInput {
     /// Nonrotating imaginary stiffness K''_n (default zero).
     #[serde(default)]
     pub hysteretic_nonrotating: Option<Vec<Vec<f64>>>,
+    /// Supports in the general form (see `SupportInput`) acting on degree of freedom `node`
+    /// as a translation `x + i y`, beside the matrices: cross-coupled, anisotropic or
+    /// speed-dependent bearings and seals.
+    #[serde(default)]
+    pub supports: Vec<SupportInput>,
 }
 
 /// How hysteretic damping (the loss factors) is modelled, tagged by `model`. Viscous damping
@@ -369,6 +431,11 @@ pub struct Pole {
     pub damping_ratio: f64,
     /// `-2 pi sigma / |omega|`; null for a pole that does not oscillate.
     pub log_decrement: Option<f64>,
+    /// Rotor poles: `(F - B) / (F + B)` of the forward and backward circular parts of the
+    /// orbits, in [-1, 1]: +1 circular forward, -1 circular backward, 0 planar (elliptical in
+    /// between; always +-1 on isotropic supports).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub whirl_ratio: Option<f64>,
     /// Mode shape (`modal` only, rotor poles): the complex translation `x + i y` of each node,
     /// scaled so that the largest is 1 and real.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -509,6 +576,9 @@ pub struct DampingMatricesRequest {
     /// branches of each side is chosen automatically (omit `branches` and `nu` then).
     #[serde(default)]
     pub fit: Option<FitInput>,
+    /// Spin speed at which supports tabulated against speed are evaluated, rad/s (default 0).
+    #[serde(default)]
+    pub speed: Option<f64>,
 }
 
 /// Form of the returned matrices.
@@ -544,15 +614,26 @@ pub struct ComplexMatrix {
     pub im: Vec<Vec<f64>>,
 }
 
-/// Second-order matrices, real and symmetric, of the coordinates in `coordinates`.
+/// Second-order matrices of the coordinates in `coordinates`:
+/// `M q'' + (C_n + C_r - i Omega S G) q' + (K - i Omega S C_r) q = F`, `S = diag(spin)`
+/// (`spin` all 1 unless the coordinates are doubled). Real and symmetric for isotropic
+/// supports; supports in the general form may add imaginary parts (`imaginary`).
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
 pub struct SecondOrderMatrices {
     pub mass: Vec<Vec<f64>>,
     pub gyroscopic: Vec<Vec<f64>>,
     pub stiffness: Vec<Vec<f64>>,
-    /// Rotating damping (its circulatory term is `-i Omega C_r q`).
+    /// Rotating damping (its circulatory term is `-i Omega S C_r q`).
     pub damping_rotating: Vec<Vec<f64>>,
     pub damping_nonrotating: Vec<Vec<f64>>,
+    /// The imaginary parts of the same matrices, when any is nonzero.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schema(no_recursion)]
+    pub imaginary: Option<Box<SecondOrderMatrices>>,
+    /// Doubled coordinates `(r, conj r)`: -1 on the `conj r` coordinates (and their rotating
+    /// branches), where the terms in the spin speed change sign; +1 elsewhere.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spin: Option<Vec<f64>>,
 }
 
 /// First-order form `z' = (A0 + Omega A1) z + B F`.
@@ -572,6 +653,9 @@ pub struct CoordinateOut {
     pub index: usize,
     /// `translation`, `rotation` or `internal`.
     pub kind: String,
+    /// Doubled coordinates: whether this is the `conj r` copy of a physical coordinate.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub conjugate: Option<bool>,
     /// Node of a physical coordinate.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub node: Option<usize>,
@@ -646,6 +730,9 @@ pub struct DampingMatricesResponse {
     pub equivalent_rotating: Option<Vec<Vec<f64>>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub equivalent_nonrotating: Option<Vec<Vec<f64>>>,
+    /// Imaginary part of `equivalent_nonrotating`, when nonzero (supports in the general form).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub equivalent_nonrotating_imaginary: Option<Vec<Vec<f64>>>,
     /// Modal loss factors of the retained modes.
     pub modes: Vec<ModeLoss>,
     /// Nonviscous model: one report per damper.
@@ -774,15 +861,26 @@ pub struct UnbalanceResponseRequest {
     pub nodes: Option<Vec<i64>>,
 }
 
-/// Steady synchronous response of one node.
+/// Steady synchronous response of one node: an elliptical orbit (a circle on isotropic
+/// supports).
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
 pub struct NodeUnbalance {
     pub node: usize,
-    /// Radius of the (circular, forward) orbit, m, zero to peak.
+    /// Semi-major axis of the orbit, m (zero to peak): the radius of a circular orbit.
     pub amplitude: Vec<f64>,
-    /// Angle of the displacement relative to the rotor's reference (the unbalance at phase
-    /// 0), rad: `r = amplitude e^{i (Omega t + phase)}`.
+    /// Angle of the forward part of the whirl relative to the rotor's reference (the
+    /// unbalance at phase 0), rad: `r = a e^{i Omega t} + conj(b) e^{-i Omega t}` with
+    /// `a = |a| e^{i phase}`; for a circular orbit `r = amplitude e^{i (Omega t + phase)}`.
     pub phase: Vec<f64>,
+    /// `x(t) = x_amplitude cos(Omega t + x_phase)`, m and rad (ROSS's complex amplitudes).
+    pub x_amplitude: Vec<f64>,
+    pub x_phase: Vec<f64>,
+    /// `y(t) = y_amplitude cos(Omega t + y_phase)`.
+    pub y_amplitude: Vec<f64>,
+    pub y_phase: Vec<f64>,
+    /// Semi-axes of the orbit, m.
+    pub major: Vec<f64>,
+    pub minor: Vec<f64>,
 }
 
 /// Answer of `POST /v1/unbalance-response`.

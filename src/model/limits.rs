@@ -70,6 +70,8 @@ pub struct Size {
     pub internal: usize,
     /// Linear problems per speed (4 for the hysteretic model).
     pub problems: usize,
+    /// State matrices kept per problem: one, or one per speed of the supports' tables.
+    pub points: usize,
 }
 
 impl Size {
@@ -77,7 +79,8 @@ impl Size {
         2 * self.dofs + self.internal
     }
 
-    /// Heap of the assembled rotor, its modal basis and its first-order models.
+    /// Heap of the assembled rotor, its modal bases, its realizations and its first-order
+    /// models (`dofs` is the size of the coordinates solved: doubled when they are).
     pub fn model_bytes(&self) -> u64 {
         let (na, n, s) = (
             self.assembled as u64,
@@ -89,7 +92,7 @@ impl Size {
         let assembly = 12 * 8 * na * na;
         let basis = 16 * 8 * n * n;
         let second_order = 96 * n * n;
-        let state = self.problems as u64 * 2 * 16 * s * s;
+        let state = self.problems as u64 * self.points.max(1) as u64 * 2 * 16 * s * s;
         let build = 2 * 16 * n * (4 * n + self.internal as u64) + 16 * n * n;
         assembly + basis + second_order + state + build
     }

@@ -11,6 +11,7 @@ pub mod limits;
 pub mod loads;
 pub mod rotor;
 pub mod speeds;
+pub mod supports;
 pub mod tagged;
 pub mod task;
 

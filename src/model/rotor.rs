@@ -1,7 +1,8 @@
 //! Validated rotors. A value of these types exists only if it is physically valid.
 
-use super::api::{BeamInput, GuyanKeep, JeffcottInput, MatricesInput, RotorInput};
+use super::api::{BeamInput, GuyanKeep, JeffcottInput, MatricesInput, RotorInput, SupportInput};
 use super::error::{Invalid, finite, loss_factor, non_negative, positive};
+use super::supports::{self, GeneralSupport};
 use crate::linalg::{self, RMat};
 
 pub use super::limits::Limits;
@@ -33,6 +34,21 @@ impl Rotor {
             Rotor::Beam(b) => b.nodes(),
             Rotor::Matrices(m) => m.mass.nrows(),
         }
+    }
+
+    /// Supports in the general form.
+    pub fn general_supports(&self) -> &[GeneralSupport] {
+        match self {
+            Rotor::Jeffcott(_) => &[],
+            Rotor::Beam(b) => &b.general_supports,
+            Rotor::Matrices(m) => &m.general_supports,
+        }
+    }
+
+    /// Whether the equations couple `r` to its conjugate (a support not isotropic): the
+    /// doubled coordinates `(r, conj r)` are then solved.
+    pub fn doubled(&self) -> bool {
+        self.general_supports().iter().any(|s| !s.isotropic())
     }
 
     /// Complex degrees of freedom as assembled, before any reduction.
@@ -118,12 +134,62 @@ pub struct Support {
     pub loss_factor: f64,
 }
 
+/// Validates a rotor's supports: the isotropic ones and those in the general form.
+/// `node_ok` checks a node (a degree of freedom for matrices) and records its error.
+pub fn parse_supports(
+    inputs: &[SupportInput],
+    bad: &mut Invalid,
+    mut node_ok: impl FnMut(&mut Invalid, String, i64) -> Option<usize>,
+) -> (Vec<Support>, Vec<GeneralSupport>) {
+    let mut isotropic = vec![];
+    let mut general = vec![];
+    for (i, s) in inputs.iter().enumerate() {
+        let at = format!("rotor.supports[{i}]");
+        let node = node_ok(bad, format!("{at}.node"), s.node);
+        if supports::is_general(s) {
+            if let (Some(g), Some(_)) = (
+                supports::parse_general(s, node.unwrap_or(0), &at, bad),
+                node,
+            ) {
+                general.push(g);
+            }
+            continue;
+        }
+        let Some(stiffness) = s.stiffness else {
+            bad.push(
+                format!("{at}.stiffness"),
+                "needs `stiffness` (the isotropic form) or `kxx`, `kyy`, ... (the general form)",
+            );
+            continue;
+        };
+        let k = bad.check(&format!("{at}.stiffness"), non_negative(stiffness));
+        let c = bad.check(
+            &format!("{at}.damping"),
+            non_negative(s.damping.unwrap_or(0.0)),
+        );
+        let eta = bad.check(
+            &format!("{at}.loss_factor"),
+            loss_factor(s.loss_factor.unwrap_or(0.0)),
+        );
+        if let (Some(node), Some(k), Some(c), Some(eta)) = (node, k, c, eta) {
+            isotropic.push(Support {
+                node,
+                stiffness: k,
+                damping: c,
+                loss_factor: eta,
+            });
+        }
+    }
+    (isotropic, general)
+}
+
 /// A valid finite-element rotor: element `e` joins nodes `e` and `e + 1`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BeamRotor {
     elements: Vec<ShaftElement>,
     disks: Vec<Disk>,
     supports: Vec<Support>,
+    general_supports: Vec<GeneralSupport>,
     guyan: Option<GuyanKeep>,
 }
 
@@ -134,8 +200,13 @@ impl BeamRotor {
     pub fn disks(&self) -> &[Disk] {
         &self.disks
     }
+    /// Isotropic supports (the isotropic form).
     pub fn supports(&self) -> &[Support] {
         &self.supports
+    }
+    /// Supports in the general form.
+    pub fn general_supports(&self) -> &[GeneralSupport] {
+        &self.general_supports
     }
     pub fn guyan(&self) -> Option<GuyanKeep> {
         self.guyan
@@ -311,26 +382,12 @@ impl BeamRotor {
                 "a rotor needs at least one support (bearing) to hold it",
             );
         }
-        let mut supports = vec![];
-        for (i, s) in b.supports.iter().enumerate() {
-            let at = format!("rotor.supports[{i}]");
-            let node = node_ok(&mut bad, format!("{at}.node"), s.node);
-            let k = bad.check(&format!("{at}.stiffness"), non_negative(s.stiffness));
-            let c = bad.check(&format!("{at}.damping"), non_negative(s.damping));
-            let eta = bad.check(&format!("{at}.loss_factor"), loss_factor(s.loss_factor));
-            if let (Some(node), Some(k), Some(c), Some(eta)) = (node, k, c, eta) {
-                supports.push(Support {
-                    node,
-                    stiffness: k,
-                    damping: c,
-                    loss_factor: eta,
-                });
-            }
-        }
+        let (supports, general_supports) = parse_supports(&b.supports, &mut bad, node_ok);
         bad.into_result(|| BeamRotor {
             elements,
             disks,
             supports,
+            general_supports,
             guyan: b.reduction.as_ref().map(|r| r.guyan),
         })
     }
@@ -346,6 +403,8 @@ pub struct MatrixRotor {
     pub damping_nonrotating: RMat,
     pub hysteretic_rotating: RMat,
     pub hysteretic_nonrotating: RMat,
+    /// Supports in the general form, `node` being a degree of freedom.
+    pub general_supports: Vec<GeneralSupport>,
 }
 
 impl MatrixRotor {
@@ -414,6 +473,28 @@ impl MatrixRotor {
         {
             bad.push("rotor.mass", "must be positive definite");
         }
+        let dof_ok = |bad: &mut Invalid, at: String, k: i64| -> Option<usize> {
+            if k >= 0 && (k as u64) < n as u64 {
+                Some(k as usize)
+            } else {
+                bad.push(
+                    at,
+                    format!("degree of freedom {k} does not exist (0 to {})", n - 1),
+                );
+                None
+            }
+        };
+        let (isotropic, general_supports) = parse_supports(&m.supports, &mut bad, dof_ok);
+        let mut stiffness = stiffness;
+        let mut c_n = c_n;
+        let mut h_n = h_n;
+        for s in &isotropic {
+            if let (Some(k), Some(c), Some(h)) = (&mut stiffness, &mut c_n, &mut h_n) {
+                k[(s.node, s.node)] += s.stiffness;
+                c[(s.node, s.node)] += s.damping;
+                h[(s.node, s.node)] += s.loss_factor * s.stiffness;
+            }
+        }
         bad.into_result(|| MatrixRotor {
             mass: mass.unwrap(),
             stiffness: stiffness.unwrap(),
@@ -422,6 +503,7 @@ impl MatrixRotor {
             damping_nonrotating: c_n.unwrap(),
             hysteretic_rotating: h_r.unwrap(),
             hysteretic_nonrotating: h_n.unwrap(),
+            general_supports,
         })
     }
 }

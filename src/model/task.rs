@@ -58,24 +58,36 @@ impl Model {
     /// Sizes of the model as solved, with `branches` per nonviscous damper (its own when
     /// `None`).
     pub fn size_with(&self, branches: Option<(usize, usize)>) -> Size {
-        let dofs = self.rotor.dof_count();
+        let n = self.rotor.dof_count();
+        // Doubled coordinates: twice the degrees of freedom, a nonrotating damper per x/y mode
+        // and each rotating one on both copies.
+        let copies = if self.rotor.doubled() { 2 } else { 1 };
         let (rotating, nonrotating) = self.rotor.loss_sides();
         let (internal, problems) = match &self.damping {
             DampingModel::Nonviscous(spec) => {
                 let (br, bn) =
                     branches.unwrap_or((spec.rotating.count(), spec.nonrotating.count()));
-                let modes = spec.modes.unwrap_or(dofs);
+                let modes = spec.modes.unwrap_or(n);
                 let per_mode = usize::from(rotating) * br + usize::from(nonrotating) * bn;
-                (modes * per_mode, 1)
+                (copies * modes * per_mode, 1)
             }
             DampingModel::Hysteretic => (0, 4),
             _ => (0, 1),
         };
+        let mut speeds: Vec<f64> = self
+            .rotor
+            .general_supports()
+            .iter()
+            .flat_map(|s| s.speeds().iter().copied())
+            .collect();
+        speeds.sort_by(f64::total_cmp);
+        speeds.dedup();
         Size {
-            assembled: self.rotor.assembled_dofs(),
-            dofs,
+            assembled: copies * self.rotor.assembled_dofs(),
+            dofs: copies * n,
             internal,
             problems,
+            points: speeds.len().max(1),
         }
     }
 
@@ -147,6 +159,8 @@ pub enum TaskKind {
         max_deviation: Option<f64>,
         /// The fit may choose no more states than this.
         max_states: usize,
+        /// Spin speed at which tabulated supports are evaluated.
+        speed: f64,
     },
     Time {
         model: Model,
@@ -373,7 +387,9 @@ impl DampingMatricesRequest {
                 _ => bad.push("fit.max_deviation", "applies to the nonviscous model only"),
             }
         }
+        let speed = bad.check("speed", non_negative(self.speed.unwrap_or(0.0)));
         let model = Model::parse(&self.rotor, &self.damping, limits, bad)?;
+        let speed = speed.expect("validated");
         if matches!(
             model.damping,
             DampingModel::Viscous | DampingModel::Hysteretic
@@ -422,6 +438,7 @@ impl DampingMatricesRequest {
                 band,
                 max_deviation: auto,
                 max_states: limits.max_states,
+                speed,
             },
             cost,
         }

@@ -5,6 +5,7 @@ use crate::analysis::modal::ModalResult;
 use crate::analysis::poles;
 use crate::analysis::stability::Threshold;
 use crate::analysis::time::{Method, TimeResult};
+use crate::analysis::unbalance::Orbit;
 use crate::damping::StateModel;
 use crate::damping::report::{Augmented, Coordinate, DamperFit, ModelMatrices};
 use crate::linalg::{CMat, RMat, c64};
@@ -26,6 +27,7 @@ pub fn pole(p: &poles::Pole) -> api::Pole {
         whirl: whirl(p.whirl),
         damping_ratio: p.damping_ratio(),
         log_decrement: p.log_decrement(),
+        whirl_ratio: (p.whirl != poles::Whirl::Internal).then_some(p.whirl_ratio),
         shape: None,
     }
 }
@@ -131,6 +133,17 @@ pub fn rows(a: &RMat) -> Vec<Vec<f64>> {
         .collect()
 }
 
+/// Rows of one part (`re` or `im`) of a complex matrix.
+fn part(a: &CMat, f: fn(c64) -> f64) -> Vec<Vec<f64>> {
+    (0..a.nrows())
+        .map(|i| (0..a.ncols()).map(|j| f(a[(i, j)])).collect())
+        .collect()
+}
+
+fn has_imaginary(a: &CMat) -> bool {
+    (0..a.nrows()).any(|i| (0..a.ncols()).any(|j| a[(i, j)].im != 0.0))
+}
+
 fn complex(a: &CMat) -> api::ComplexMatrix {
     let part = |f: fn(c64) -> f64| -> Vec<Vec<f64>> {
         (0..a.nrows())
@@ -144,13 +157,30 @@ fn complex(a: &CMat) -> api::ComplexMatrix {
 }
 
 pub fn second_order(a: &Augmented) -> api::SecondOrderMatrices {
-    api::SecondOrderMatrices {
-        mass: rows(&a.mass),
-        gyroscopic: rows(&a.gyroscopic),
-        stiffness: rows(&a.stiffness),
-        damping_rotating: rows(&a.damping_rotating),
-        damping_nonrotating: rows(&a.damping_nonrotating),
+    let all = [
+        &a.mass,
+        &a.gyroscopic,
+        &a.stiffness,
+        &a.damping_rotating,
+        &a.damping_nonrotating,
+    ];
+    let of = |f: fn(c64) -> f64| api::SecondOrderMatrices {
+        mass: part(&a.mass, f),
+        gyroscopic: part(&a.gyroscopic, f),
+        stiffness: part(&a.stiffness, f),
+        damping_rotating: part(&a.damping_rotating, f),
+        damping_nonrotating: part(&a.damping_nonrotating, f),
+        imaginary: None,
+        spin: None,
+    };
+    let mut out = of(|z| z.re);
+    if all.iter().any(|m| has_imaginary(m)) {
+        out.imaginary = Some(Box::new(of(|z| z.im)));
     }
+    if a.spin.iter().any(|&s| s != 1.0) {
+        out.spin = Some(a.spin.clone());
+    }
+    out
 }
 
 /// State form; `m_inv` is `M^-1` (complex), placed on the velocity rows of `B`.
@@ -173,8 +203,9 @@ pub fn coordinates(c: &[Coordinate]) -> Vec<api::CoordinateOut> {
     c.iter()
         .enumerate()
         .map(|(index, c)| match c {
-            Coordinate::Physical(d) => api::CoordinateOut {
+            Coordinate::Physical { dof: d, conjugate } => api::CoordinateOut {
                 index,
+                conjugate: conjugate.then_some(true),
                 kind: match d.kind {
                     DofKind::Translation => "translation",
                     DofKind::Rotation => "rotation",
@@ -194,6 +225,7 @@ pub fn coordinates(c: &[Coordinate]) -> Vec<api::CoordinateOut> {
                 rate,
             } => api::CoordinateOut {
                 index,
+                conjugate: None,
                 kind: "internal".into(),
                 node: None,
                 mode: Some(mode + 1),
@@ -240,8 +272,13 @@ pub fn damping_matrices(r: &ModelMatrices, model: &str) -> api::DampingMatricesR
         coordinates: coordinates(&r.augmented.coordinates),
         second_order: r.state.is_none().then(|| second_order(&r.augmented)),
         state: r.state.as_ref().map(|(sm, m_inv)| state(sm, m_inv)),
-        equivalent_rotating: r.equivalent.as_ref().map(|(c_r, _)| rows(c_r)),
-        equivalent_nonrotating: r.equivalent.as_ref().map(|(_, c_n)| rows(c_n)),
+        equivalent_rotating: r.equivalent.as_ref().map(|(c_r, _)| part(c_r, |z| z.re)),
+        equivalent_nonrotating: r.equivalent.as_ref().map(|(_, c_n)| part(c_n, |z| z.re)),
+        equivalent_nonrotating_imaginary: r
+            .equivalent
+            .as_ref()
+            .filter(|(_, c_n)| has_imaginary(c_n))
+            .map(|(_, c_n)| part(c_n, |z| z.im)),
         modes: r
             .modes
             .iter()
@@ -285,7 +322,7 @@ pub fn time_response(r: &TimeResult) -> api::TimeResponseResponse {
 pub fn unbalance_response(
     speeds: &[f64],
     nodes: &[usize],
-    q: &[Vec<c64>],
+    q: &[Vec<Orbit>],
     model: &str,
 ) -> api::UnbalanceResponseResponse {
     let note = match model {
@@ -299,6 +336,9 @@ pub fn unbalance_response(
              (viscous, equivalent or nonviscous) does no work; only nonrotating damping acts"
         }
     };
+    let column = |k: usize, f: &dyn Fn(&Orbit) -> f64| -> Vec<f64> {
+        q.iter().map(|row| f(&row[k])).collect()
+    };
     api::UnbalanceResponseResponse {
         speeds: speeds.to_vec(),
         nodes: nodes
@@ -306,8 +346,14 @@ pub fn unbalance_response(
             .enumerate()
             .map(|(k, &node)| api::NodeUnbalance {
                 node,
-                amplitude: q.iter().map(|row| row[k].norm()).collect(),
-                phase: q.iter().map(|row| row[k].arg()).collect(),
+                amplitude: column(k, &|o| o.major()),
+                phase: column(k, &|o| o.a.arg()),
+                x_amplitude: column(k, &|o| o.xy()[0].norm()),
+                x_phase: column(k, &|o| o.xy()[0].arg()),
+                y_amplitude: column(k, &|o| o.xy()[1].norm()),
+                y_phase: column(k, &|o| o.xy()[1].arg()),
+                major: column(k, &|o| o.major()),
+                minor: column(k, &|o| o.minor()),
             })
             .collect(),
         note: note.into(),

@@ -243,6 +243,7 @@ mod tests {
             dofs: 1,
             internal: 0,
             problems: 1,
+            points: 1,
         };
         let mut c = Cost::new(size, 0, 0, 0, 0).with_work(work);
         c.peak_bytes = bytes;

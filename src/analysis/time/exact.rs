@@ -53,15 +53,18 @@ pub fn solve(
 ) -> Result<TimeResult, TimeError> {
     let e = linalg::eigen(&state.at(omega))?;
     let size = state.size();
-    // One right-hand side per load: unit force in its direction, unit unbalance at its phase.
+    // One right-hand side per load: unit force in its direction; unit unbalance at its phase,
+    // once per direction of whirl it drives (two in doubled coordinates).
     let mut cols: Vec<Vec<c64>> = vec![];
     for (f, &dof) in spec.forces.iter().zip(&forcing.force_dofs) {
-        let dir = c64::from_polar(1.0, f.direction);
-        cols.push(forcing.unit(dof).iter().map(|b| b * dir).collect());
+        cols.push(forcing.force_column(dof, f.direction));
     }
-    for (u, &dof) in spec.unbalances.iter().zip(&forcing.unbalance_dofs) {
-        let ph = c64::from_polar(1.0, u.phase);
-        cols.push(forcing.unit(dof).iter().map(|b| b * ph).collect());
+    let mut whirls: Vec<(usize, usize, f64)> = vec![];
+    for (u, (ub, &dof)) in spec.unbalances.iter().zip(&forcing.unbalance_dofs).enumerate() {
+        for (col, sense) in forcing.unbalance_columns(dof, ub.phase) {
+            whirls.push((u, cols.len(), sense));
+            cols.push(col);
+        }
     }
     let rhs = CMat::from_fn(size, cols.len(), |i, j| cols[j][i]);
     let g = linalg::solve_complex(&e.vectors, &rhs)?;
@@ -103,6 +106,7 @@ pub fn solve(
         lambda: &e.values,
         g: &g,
         pieces: &pieces,
+        whirls: &whirls,
         omega,
         dt: spec.output_interval,
         spec,
@@ -138,9 +142,11 @@ const CHUNK: usize = 512;
 /// The diagonalised system and its loads, evaluated over a range of output samples.
 struct Modal<'a> {
     lambda: &'a [c64],
-    /// `V^-1 B`: modal participation of each force, then each unbalance.
+    /// `V^-1 B`: modal participation of each force, then each unbalance's whirls.
     g: &'a CMat,
     pieces: &'a [(usize, f64, f64, f64)],
+    /// `(unbalance, column of g, sense)`: each unbalance whirls at `sense Omega`.
+    whirls: &'a [(usize, usize, f64)],
     omega: f64,
     dt: f64,
     spec: &'a TimeSpec,
@@ -155,16 +161,13 @@ impl Modal<'_> {
     /// nothing cancels.
     fn chunk(&self, i0: usize, i1: usize) -> Vec<Vec<c64>> {
         let size = self.lambda.len();
-        let nf = self.spec.forces.len();
-        let iw = c64::new(0.0, self.omega);
         let step: Vec<c64> = self.lambda.iter().map(|l| (l * self.dt).exp()).collect();
-        let spin = c64::from_polar(1.0, self.omega * self.dt);
         let mut e_piece = vec![vec![c64::new(0.0, 0.0); size]; self.pieces.len()];
         let mut started_piece = vec![false; self.pieces.len()];
         let unbalances = &self.spec.unbalances;
-        let mut e_unb = vec![vec![c64::new(0.0, 0.0); size]; unbalances.len()];
-        let mut w_unb = vec![c64::new(0.0, 0.0); unbalances.len()];
-        let mut started_unb = vec![false; unbalances.len()];
+        let mut e_unb = vec![vec![c64::new(0.0, 0.0); size]; self.whirls.len()];
+        let mut w_unb = vec![c64::new(0.0, 0.0); self.whirls.len()];
+        let mut started_unb = vec![false; self.whirls.len()];
         let mut acc = vec![c64::new(0.0, 0.0); size];
         let mut out = vec![Vec::with_capacity(i1 - i0); self.vrows.len()];
         for i in i0..i1 {
@@ -195,37 +198,39 @@ impl Modal<'_> {
                     acc[k] += self.g[(k, fi)] * r;
                 }
             }
-            for (u, ub) in unbalances.iter().enumerate() {
+            for (h, &(u, col, sense)) in self.whirls.iter().enumerate() {
+                let ub = &unbalances[u];
                 let tau = t - ub.from;
                 if tau <= 0.0 {
                     continue;
                 }
-                let fresh = !started_unb[u];
-                started_unb[u] = true;
-                w_unb[u] = if fresh {
-                    c64::from_polar(1.0, self.omega * tau)
+                let omega = sense * self.omega;
+                let fresh = !started_unb[h];
+                started_unb[h] = true;
+                w_unb[h] = if fresh {
+                    c64::from_polar(1.0, omega * tau)
                 } else {
-                    w_unb[u] * spin
+                    w_unb[h] * c64::from_polar(1.0, omega * self.dt)
                 };
-                let w = w_unb[u];
-                let amp =
-                    c64::from_polar(ub.amount * self.omega * self.omega, self.omega * ub.from);
+                let w = w_unb[h];
+                let iw = c64::new(0.0, omega);
+                let amp = c64::from_polar(ub.amount * self.omega * self.omega, omega * ub.from);
                 for k in 0..size {
                     let l = self.lambda[k];
-                    let ek = &mut e_unb[u][k];
+                    let ek = &mut e_unb[h][k];
                     *ek = if fresh {
                         (l * tau).exp()
                     } else {
                         *ek * step[k]
                     };
                     let z = l - iw;
-                    // tau e^{i Omega tau} phi1(z tau) = (e^{lambda tau} - e^{i Omega tau}) / z
+                    // tau e^{i w tau} phi1(z tau) = (e^{lambda tau} - e^{i w tau}) / z
                     let r = if (z * tau).norm() < 0.1 {
                         tau * w * phi1(z * tau)
                     } else {
                         (*ek - w) / z
                     };
-                    acc[k] += self.g[(k, nf + u)] * amp * r;
+                    acc[k] += self.g[(k, col)] * amp * r;
                 }
             }
             for (o, row) in out.iter_mut().zip(self.vrows) {

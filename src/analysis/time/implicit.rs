@@ -25,30 +25,9 @@ struct Factor {
     omega: f64,
 }
 
-fn matvec(a: &CMat, x: &[c64]) -> Vec<c64> {
-    let n = x.len();
-    let mut y = vec![c64::new(0.0, 0.0); n];
-    for j in 0..n {
-        let xj = x[j];
-        if xj.re == 0.0 && xj.im == 0.0 {
-            continue;
-        }
-        for (i, yi) in y.iter_mut().enumerate() {
-            *yi += a[(i, j)] * xj;
-        }
-    }
-    y
-}
-
-/// `A(Omega) x = A0 x + Omega A1 x`.
+/// `A(Omega) x` (through the supports' table, if any).
 fn apply(state: &StateModel, omega: f64, x: &[c64]) -> Vec<c64> {
-    let mut y = matvec(state.a0(), x);
-    if omega != 0.0 {
-        for (yi, zi) in y.iter_mut().zip(matvec(state.a1(), x)) {
-            *yi += zi * omega;
-        }
-    }
-    y
+    state.apply(omega, x)
 }
 
 fn norm_inf(x: &[c64]) -> f64 {

@@ -19,6 +19,7 @@ use super::control::{Cancelled, Control};
 use crate::damping::state::StateModel;
 use crate::damping::{DampedModel, ModelKind};
 use crate::linalg::{self, CMat, LinalgError, c64};
+use crate::system::{Layout, Realized};
 pub use crate::model::loads::{SpeedLaw, TimeSpec};
 use crate::system::{DofKind, RotorSystem};
 
@@ -90,21 +91,27 @@ impl From<LinalgError> for TimeError {
     }
 }
 
-/// The loads as a right-hand side `b(t) = [M^-1 F(t); 0; 0]`.
+/// The loads as a right-hand side `b(t) = [M^-1 F(t); 0; 0]`. In doubled coordinates the
+/// `conj r` rows carry the conjugate loads: a force `F e^{i theta}` there is `F e^{-i theta}`,
+/// and an unbalance whirls the other way.
 pub struct Forcing<'a> {
     spec: &'a TimeSpec,
     /// Degree of freedom of each force, then of each unbalance.
     force_dofs: Vec<usize>,
     unbalance_dofs: Vec<usize>,
-    /// `M^-1`, `n x n`.
+    /// `M^-1`, `N x N`.
     m_inv: CMat,
+    /// Rotor degrees of freedom `n` when doubled (`N = 2n`).
+    doubled: Option<usize>,
     size: usize,
 }
 
 impl<'a> Forcing<'a> {
     pub fn new(system: &RotorSystem, spec: &'a TimeSpec, size: usize) -> Result<Self, LinalgError> {
-        let n = system.n();
-        let identity = CMat::from_fn(n, n, |i, j| c64::new(if i == j { 1.0 } else { 0.0 }, 0.0));
+        let r = Realized::at(system, spec.speed.omega(0.0));
+        let big = r.size();
+        let identity =
+            CMat::from_fn(big, big, |i, j| c64::new(if i == j { 1.0 } else { 0.0 }, 0.0));
         Ok(Forcing {
             spec,
             force_dofs: spec
@@ -117,35 +124,17 @@ impl<'a> Forcing<'a> {
                 .iter()
                 .map(|u| translation(system, u.node))
                 .collect(),
-            m_inv: linalg::spd_solve(&system.mass, &identity)?,
+            m_inv: linalg::mass_solve(&r.mass, &identity)?,
+            doubled: (r.layout == Layout::Doubled).then_some(system.n()),
             size,
         })
     }
 
-    /// `b(t)`; `left`: the limit just before `t` (at the end of a step landing on a jump).
-    pub fn b(&self, t: f64, left: bool) -> Vec<c64> {
+    /// `M^-1 f` for a load vector with a few nonzero entries.
+    fn apply_m_inv(&self, f: &[(usize, c64)]) -> Vec<c64> {
         let n = self.m_inv.nrows();
-        let mut f = vec![c64::new(0.0, 0.0); n];
-        for (force, &dof) in self.spec.forces.iter().zip(&self.force_dofs) {
-            let v = if left {
-                force.history.left_value(t)
-            } else {
-                force.history.value(t)
-            };
-            f[dof] += c64::from_polar(v, force.direction);
-        }
-        let sp = &self.spec.speed;
-        for (u, &dof) in self.spec.unbalances.iter().zip(&self.unbalance_dofs) {
-            let on = if left { t > u.from } else { t >= u.from };
-            if on {
-                let (w, a) = (sp.omega(t), sp.accel(t, left));
-                let rot = c64::from_polar(1.0, sp.angle(t) + u.phase);
-                f[dof] += c64::new(w * w, -a) * rot * u.amount;
-            }
-        }
-        // Only loaded degrees of freedom contribute: O(n x loads), not O(n^2).
         let mut b = vec![c64::new(0.0, 0.0); self.size];
-        for (j, fj) in f.iter().enumerate() {
+        for &(j, fj) in f {
             if fj.re != 0.0 || fj.im != 0.0 {
                 for (i, bi) in b.iter_mut().enumerate().take(n) {
                     *bi += self.m_inv[(i, j)] * fj;
@@ -155,14 +144,52 @@ impl<'a> Forcing<'a> {
         b
     }
 
-    /// `B e_dof`: the right-hand side of a unit force on a degree of freedom.
-    pub fn unit(&self, dof: usize) -> Vec<c64> {
-        let n = self.m_inv.nrows();
-        let mut b = vec![c64::new(0.0, 0.0); self.size];
-        for (i, bi) in b.iter_mut().enumerate().take(n) {
-            *bi = self.m_inv[(i, dof)];
+    /// A load `value` on the translation `dof` (and its conjugate on `conj r`).
+    fn load(&self, dof: usize, value: c64, out: &mut Vec<(usize, c64)>) {
+        out.push((dof, value));
+        if let Some(n) = self.doubled {
+            out.push((n + dof, value.conj()));
         }
-        b
+    }
+
+    /// `b(t)`; `left`: the limit just before `t` (at the end of a step landing on a jump).
+    pub fn b(&self, t: f64, left: bool) -> Vec<c64> {
+        let mut f = vec![];
+        for (force, &dof) in self.spec.forces.iter().zip(&self.force_dofs) {
+            let v = if left {
+                force.history.left_value(t)
+            } else {
+                force.history.value(t)
+            };
+            self.load(dof, c64::from_polar(v, force.direction), &mut f);
+        }
+        let sp = &self.spec.speed;
+        for (u, &dof) in self.spec.unbalances.iter().zip(&self.unbalance_dofs) {
+            let on = if left { t > u.from } else { t >= u.from };
+            if on {
+                let (w, a) = (sp.omega(t), sp.accel(t, left));
+                let rot = c64::from_polar(1.0, sp.angle(t) + u.phase);
+                self.load(dof, c64::new(w * w, -a) * rot * u.amount, &mut f);
+            }
+        }
+        self.apply_m_inv(&f)
+    }
+
+    /// `B` of a unit force on `dof` in the direction `angle` (both rows when doubled).
+    pub fn force_column(&self, dof: usize, angle: f64) -> Vec<c64> {
+        let mut f = vec![];
+        self.load(dof, c64::from_polar(1.0, angle), &mut f);
+        self.apply_m_inv(&f)
+    }
+
+    /// `B` of a unit unbalance on `dof` at `phase`: one column per direction of whirl it
+    /// drives, with that direction (+1 on `r`, -1 on `conj r`).
+    pub fn unbalance_columns(&self, dof: usize, phase: f64) -> Vec<(Vec<c64>, f64)> {
+        let mut out = vec![(self.apply_m_inv(&[(dof, c64::from_polar(1.0, phase))]), 1.0)];
+        if let Some(n) = self.doubled {
+            out.push((self.apply_m_inv(&[(n + dof, c64::from_polar(1.0, -phase))]), -1.0));
+        }
+        out
     }
 
     /// Times where a load or the speed law changes value or slope.

@@ -13,9 +13,19 @@
 //! `-i Omega C_r`, and hysteretic damping sees the frequency `omega - Omega` in the rotor and
 //! `omega` in the supports. The bracketed imaginary stiffness is how the damping models start;
 //! each model in `damping` turns it into something an analysis can solve.
+//!
+//! Supports in the general form (cross-coupled, anisotropic, speed-dependent) are kept beside
+//! the real matrices, on the translations they act on, and [`realize`] writes the whole rotor
+//! at a given speed as complex matrices: in the coordinates `r` when every support is
+//! isotropic, else in the doubled coordinates `(r, conj r)` (MODEL.md section 8).
+
+pub mod realize;
 
 use crate::linalg::{LinalgError, RMat};
 use crate::model::rotor::{Jeffcott, Rotor};
+use crate::model::supports::GeneralSupport;
+
+pub use realize::{Layout, Realized};
 
 /// What a degree of freedom of the assembled system is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -51,6 +61,15 @@ pub struct RotorSystem {
     /// Imaginary (hysteretic) stiffness `K''_n` of the nonrotating parts.
     pub hysteretic_nonrotating: RMat,
     pub dofs: Vec<Dof>,
+    /// Supports in the general form, each on the degree of freedom of its translation.
+    pub supports: Vec<PlacedSupport>,
+}
+
+/// A general support and the degree of freedom it acts on.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlacedSupport {
+    pub dof: usize,
+    pub support: GeneralSupport,
 }
 
 impl RotorSystem {
@@ -79,6 +98,7 @@ impl RotorSystem {
                 node: 0,
                 kind: DofKind::Translation,
             }],
+            supports: vec![],
         }
     }
 
@@ -87,8 +107,41 @@ impl RotorSystem {
         self.mass.nrows()
     }
 
-    /// Total real stiffness `K`.
+    /// Total real stiffness `K` (without the general supports).
     pub fn stiffness(&self) -> RMat {
         &self.stiffness_rotating + &self.stiffness_nonrotating
+    }
+
+    /// The coordinates the rotor is solved in.
+    pub fn layout(&self) -> Layout {
+        if self.supports.iter().all(|s| s.support.isotropic()) {
+            Layout::Single
+        } else {
+            Layout::Doubled
+        }
+    }
+
+    /// Whether any support's coefficients change with the speed.
+    pub fn speed_dependent(&self) -> bool {
+        self.supports.iter().any(|s| !s.support.speeds().is_empty())
+    }
+
+    /// The speeds at which a support's table has a point (sorted, deduplicated).
+    pub fn table_speeds(&self) -> Vec<f64> {
+        let mut w: Vec<f64> = self
+            .supports
+            .iter()
+            .flat_map(|s| s.support.speeds().iter().copied())
+            .collect();
+        w.sort_by(f64::total_cmp);
+        w.dedup();
+        w
+    }
+
+    /// The degree of freedom of a node's translation.
+    pub fn translation(&self, node: usize) -> Option<usize> {
+        self.dofs
+            .iter()
+            .position(|d| d.node == node && d.kind == DofKind::Translation)
     }
 }

@@ -1,0 +1,412 @@
+//! Supports (bearings, seals, pedestals) in their general form: stiffness, damping and mass
+//! coefficients `[[xx, xy], [yx, yy]]`, possibly tabulated against spin speed.
+//!
+//! The force on the shaft is `f = -K [x, y] - C [x', y'] - M [x'', y'']` (the convention of
+//! ROSS and API 684). In complex coordinates `r = x + i y` a coefficient matrix `A` acts as
+//! `f_r = -(a_iso r + a_an conj(r))` with `a_iso = (xx + yy)/2 + i (yx - xy)/2` and
+//! `a_an = (xx - yy)/2 + i (xy + yx)/2` (MODEL.md section 8): skew cross-coupling is the
+//! imaginary part of `a_iso`, and only `a_an` couples `r` to its conjugate.
+//!
+//! A table gives every coefficient at increasing spin speeds; between them a coefficient is
+//! linear in the speed, outside them it is held at the end value.
+
+use super::api::{Coefficient, SupportInput};
+use super::error::{Invalid, loss_factor};
+use crate::linalg::c64;
+
+/// Most speeds in one support's table.
+pub const MAX_TABLE: usize = 64;
+
+/// A 2x2 real coefficient matrix `[[xx, xy], [yx, yy]]`.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Matrix2 {
+    pub xx: f64,
+    pub xy: f64,
+    pub yx: f64,
+    pub yy: f64,
+}
+
+impl Matrix2 {
+    /// `(a_iso, a_an)` of the module docs.
+    pub fn complex(&self) -> (c64, c64) {
+        (
+            c64::new(0.5 * (self.xx + self.yy), 0.5 * (self.yx - self.xy)),
+            c64::new(0.5 * (self.xx - self.yy), 0.5 * (self.xy + self.yx)),
+        )
+    }
+
+    /// The symmetric part: what stores energy (the skew part is circulatory).
+    pub fn symmetric(&self) -> Self {
+        let c = 0.5 * (self.xy + self.yx);
+        Matrix2 {
+            xx: self.xx,
+            xy: c,
+            yx: c,
+            yy: self.yy,
+        }
+    }
+
+    pub fn scaled(&self, f: f64) -> Self {
+        Matrix2 {
+            xx: f * self.xx,
+            xy: f * self.xy,
+            yx: f * self.yx,
+            yy: f * self.yy,
+        }
+    }
+
+    fn lerp(&self, other: &Self, t: f64) -> Self {
+        let l = |a: f64, b: f64| a + (b - a) * t;
+        Matrix2 {
+            xx: l(self.xx, other.xx),
+            xy: l(self.xy, other.xy),
+            yx: l(self.yx, other.yx),
+            yy: l(self.yy, other.yy),
+        }
+    }
+
+    /// Whether it acts on `r` alone (`a_an = 0`).
+    pub fn isotropic(&self) -> bool {
+        self.xx == self.yy && self.xy == -self.yx
+    }
+
+    pub fn is_zero(&self) -> bool {
+        *self == Matrix2::default()
+    }
+}
+
+/// Stiffness, damping and mass coefficients at one speed.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Coefficients {
+    pub k: Matrix2,
+    pub c: Matrix2,
+    pub m: Matrix2,
+}
+
+impl Coefficients {
+    fn lerp(&self, other: &Self, t: f64) -> Self {
+        Coefficients {
+            k: self.k.lerp(&other.k, t),
+            c: self.c.lerp(&other.c, t),
+            m: self.m.lerp(&other.m, t),
+        }
+    }
+
+    pub fn isotropic(&self) -> bool {
+        self.k.isotropic() && self.c.isotropic() && self.m.isotropic()
+    }
+}
+
+/// How a support's coefficients depend on the spin speed.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Law {
+    Constant(Coefficients),
+    /// Linear between increasing `speeds`, held outside them.
+    Table {
+        speeds: Vec<f64>,
+        values: Vec<Coefficients>,
+    },
+}
+
+/// A validated support in the general form.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GeneralSupport {
+    pub node: usize,
+    pub law: Law,
+    /// Its hysteretic stiffness is `loss_factor` times the symmetric part of `K`.
+    pub loss_factor: f64,
+}
+
+impl GeneralSupport {
+    /// The coefficients at `speed`.
+    pub fn at(&self, speed: f64) -> Coefficients {
+        match &self.law {
+            Law::Constant(c) => *c,
+            Law::Table { speeds, values } => {
+                let last = speeds.len() - 1;
+                if speed <= speeds[0] {
+                    return values[0];
+                }
+                if speed >= speeds[last] {
+                    return values[last];
+                }
+                let k = speeds.partition_point(|&w| w <= speed) - 1;
+                let t = (speed - speeds[k]) / (speeds[k + 1] - speeds[k]);
+                values[k].lerp(&values[k + 1], t)
+            }
+        }
+    }
+
+    /// The table's speeds (none for constant coefficients).
+    pub fn speeds(&self) -> &[f64] {
+        match &self.law {
+            Law::Constant(_) => &[],
+            Law::Table { speeds, .. } => speeds,
+        }
+    }
+
+    /// Whether it acts on `r` alone at every speed.
+    pub fn isotropic(&self) -> bool {
+        match &self.law {
+            Law::Constant(c) => c.isotropic(),
+            Law::Table { values, .. } => values.iter().all(Coefficients::isotropic),
+        }
+    }
+
+    /// Whether its mass coefficients change with speed.
+    pub fn mass_varies(&self) -> bool {
+        match &self.law {
+            Law::Constant(_) => false,
+            Law::Table { values, .. } => values.iter().any(|v| v.m != values[0].m),
+        }
+    }
+}
+
+/// One coefficient as given: a number, or one value per table speed.
+fn values(
+    c: &Option<Coefficient>,
+    at: &str,
+    table: Option<usize>,
+    bad: &mut Invalid,
+) -> Option<Vec<f64>> {
+    let v = match c {
+        None => return Some(vec![]),
+        Some(Coefficient::Number(x)) => vec![*x],
+        Some(Coefficient::Table(v)) => {
+            match table {
+                None => {
+                    bad.push(
+                        at,
+                        "an array of values needs `speeds`: the spin speeds they are given at",
+                    );
+                    return None;
+                }
+                Some(n) if v.len() != n => {
+                    bad.push(
+                        at,
+                        format!(
+                            "needs one value per speed in `speeds`: {n} (got {})",
+                            v.len()
+                        ),
+                    );
+                    return None;
+                }
+                Some(_) => {}
+            }
+            v.clone()
+        }
+    };
+    for (i, x) in v.iter().enumerate() {
+        if !x.is_finite() {
+            let path = if matches!(c, Some(Coefficient::Table(_))) {
+                format!("{at}[{i}]")
+            } else {
+                at.to_string()
+            };
+            bad.push(path, "must be a finite number");
+            return None;
+        }
+    }
+    Some(v)
+}
+
+/// The general-form fields of a support, with their names.
+fn general_fields(s: &SupportInput) -> [(&'static str, &Option<Coefficient>); 12] {
+    [
+        ("kxx", &s.kxx),
+        ("kxy", &s.kxy),
+        ("kyx", &s.kyx),
+        ("kyy", &s.kyy),
+        ("cxx", &s.cxx),
+        ("cxy", &s.cxy),
+        ("cyx", &s.cyx),
+        ("cyy", &s.cyy),
+        ("mxx", &s.mxx),
+        ("mxy", &s.mxy),
+        ("myx", &s.myx),
+        ("myy", &s.myy),
+    ]
+}
+
+/// Whether a support is given in the general form.
+pub fn is_general(s: &SupportInput) -> bool {
+    general_fields(s).iter().any(|(_, v)| v.is_some()) || s.speeds.is_some()
+}
+
+/// Validates the general form of `s` (at path `at`), its node already checked.
+pub fn parse_general(
+    s: &SupportInput,
+    node: usize,
+    at: &str,
+    bad: &mut Invalid,
+) -> Option<GeneralSupport> {
+    let before = bad.count();
+    for (field, given) in [
+        ("stiffness", s.stiffness.is_some()),
+        ("damping", s.damping.is_some()),
+    ] {
+        if given {
+            bad.push(
+                format!("{at}.{field}"),
+                "give the isotropic form (`stiffness`, `damping`) or the general form (`kxx`, \
+                 `kxy`, ..., `speeds`), not both",
+            );
+        }
+    }
+    let table = match &s.speeds {
+        None => None,
+        Some(w) => {
+            let path = format!("{at}.speeds");
+            if w.len() < 2 || w.len() > MAX_TABLE {
+                bad.push(
+                    &path,
+                    format!("needs 2 to {MAX_TABLE} speeds (got {})", w.len()),
+                );
+            }
+            for (i, x) in w.iter().enumerate() {
+                if !x.is_finite() || *x < 0.0 {
+                    bad.push(format!("{path}[{i}]"), "must be a finite speed >= 0");
+                } else if i > 0 && w[i - 1].is_finite() && *x <= w[i - 1] {
+                    bad.push(format!("{path}[{i}]"), "speeds must be strictly increasing");
+                }
+            }
+            Some(w.len())
+        }
+    };
+    let eta = bad.check(
+        &format!("{at}.loss_factor"),
+        loss_factor(s.loss_factor.unwrap_or(0.0)),
+    );
+    let mut columns: Vec<Vec<f64>> = vec![];
+    for (name, c) in general_fields(s) {
+        columns.push(values(c, &format!("{at}.{name}"), table, bad).unwrap_or_default());
+    }
+    if bad.count() > before {
+        return None;
+    }
+    let points = table.unwrap_or(1);
+    // Column order: k(xx, xy, yx, yy), c(...), m(...); kyy and cyy default to kxx and cxx.
+    let value = |col: usize, i: usize| -> f64 {
+        let v = &columns[col];
+        match v.len() {
+            0 => match col {
+                3 => value_of(&columns[0], i),
+                7 => value_of(&columns[4], i),
+                _ => 0.0,
+            },
+            _ => value_of(v, i),
+        }
+    };
+    fn value_of(v: &[f64], i: usize) -> f64 {
+        match v.len() {
+            0 => 0.0,
+            1 => v[0],
+            _ => v[i],
+        }
+    }
+    let matrix = |base: usize, i: usize| Matrix2 {
+        xx: value(base, i),
+        xy: value(base + 1, i),
+        yx: value(base + 2, i),
+        yy: value(base + 3, i),
+    };
+    let at_point = |i: usize| Coefficients {
+        k: matrix(0, i),
+        c: matrix(4, i),
+        m: matrix(8, i),
+    };
+    let law = match &s.speeds {
+        None => Law::Constant(at_point(0)),
+        Some(w) => Law::Table {
+            speeds: w.clone(),
+            values: (0..points).map(at_point).collect(),
+        },
+    };
+    Some(GeneralSupport {
+        node,
+        law,
+        loss_factor: eta?,
+    })
+}
+
+/// The warning for analysis speeds outside a support's table (`None` if inside).
+pub fn held_warning(path: &str, support: &GeneralSupport, lo: f64, hi: f64) -> Option<String> {
+    let w = support.speeds();
+    let (first, last) = (*w.first()?, *w.last()?);
+    let below = lo < first;
+    let above = hi > last;
+    match (below, above) {
+        (false, false) => None,
+        (true, false) => Some(format!(
+            "{path}: below its table ({first} rad/s) its coefficients are held at their first \
+             values"
+        )),
+        (false, true) => Some(format!(
+            "{path}: above its table ({last} rad/s) its coefficients are held at their last \
+             values"
+        )),
+        (true, true) => Some(format!(
+            "{path}: outside its table ({first} to {last} rad/s) its coefficients are held at \
+             their end values"
+        )),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn skew_cross_coupling_is_isotropic_and_imaginary() {
+        let k = Matrix2 {
+            xx: 2.0,
+            xy: 3.0,
+            yx: -3.0,
+            yy: 2.0,
+        };
+        assert!(k.isotropic());
+        let (iso, an) = k.complex();
+        assert_eq!((iso, an), (c64::new(2.0, -3.0), c64::new(0.0, 0.0)));
+        // f_r = -(iso r + an conj r) equals -(K [x, y]) as a complex number.
+        let general = Matrix2 {
+            xx: 1.2,
+            xy: 0.3,
+            yx: -0.7,
+            yy: 0.5,
+        };
+        let (iso, an) = general.complex();
+        let (x, y) = (0.4, -1.3);
+        let r = c64::new(x, y);
+        let f = -(iso * r + an * r.conj());
+        let fx = -(general.xx * x + general.xy * y);
+        let fy = -(general.yx * x + general.yy * y);
+        assert!((f - c64::new(fx, fy)).norm() < 1e-15);
+    }
+
+    #[test]
+    fn tables_are_linear_inside_and_held_outside() {
+        let at = |k: f64| Coefficients {
+            k: Matrix2 {
+                xx: k,
+                xy: 0.0,
+                yx: 0.0,
+                yy: k,
+            },
+            ..Coefficients::default()
+        };
+        let s = GeneralSupport {
+            node: 0,
+            law: Law::Table {
+                speeds: vec![100.0, 200.0, 400.0],
+                values: vec![at(1.0), at(3.0), at(4.0)],
+            },
+            loss_factor: 0.0,
+        };
+        assert_eq!(s.at(0.0).k.xx, 1.0);
+        assert_eq!(s.at(150.0).k.xx, 2.0);
+        assert_eq!(s.at(300.0).k.xx, 3.5);
+        assert_eq!(s.at(1e4).k.xx, 4.0);
+        assert!(held_warning("s", &s, 0.0, 300.0).unwrap().contains("first"));
+        assert!(held_warning("s", &s, 150.0, 300.0).is_none());
+    }
+}
