@@ -46,7 +46,9 @@ fn distance(reference: &[c64], computed: &[c64]) -> f64 {
     let one_way = |a: &[c64], b: &[c64]| {
         a.iter()
             .map(|s| {
-                b.iter().map(|t| (s - t).norm()).fold(f64::INFINITY, f64::min)
+                b.iter()
+                    .map(|t| (s - t).norm())
+                    .fold(f64::INFINITY, f64::min)
                     / s.norm().max(1e-300)
             })
             .fold(0.0, f64::max)
@@ -139,7 +141,9 @@ fn unbalance_match(file: &str, tolerance: f64) {
     }))
     .unwrap();
     let task = req.parse(&Limits::default()).unwrap();
-    let Outcome::Unbalance { response, speeds, .. } = run(&task, &Control::default()).unwrap()
+    let Outcome::Unbalance {
+        response, speeds, ..
+    } = run(&task, &Control::default()).unwrap()
     else {
         unreachable!()
     };
@@ -172,3 +176,108 @@ fn unbalance_responses_are_rosss_x_and_y_amplitudes_and_phases() {
     unbalance_match("compressor_example.json", 1e-6);
 }
 
+/// The bundled Example 1 rotor with its supports written in the general form, and a copy
+/// whose first support is anisotropic by `epsilon` (so that it is solved in doubled
+/// coordinates).
+fn example1_general(epsilon: f64) -> (RotorSystem, RotorSystem) {
+    let path = format!(
+        "{}/examples/example1-nvd.modal.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let v: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let mut rotor = v["rotor"].clone();
+    let iso = rotor.clone();
+    for s in rotor["supports"].as_array_mut().unwrap() {
+        let k = s["stiffness"].as_f64().unwrap();
+        let eta = s["loss_factor"].as_f64().unwrap();
+        *s = json!({"node": s["node"], "kxx": k, "kxy": 0.0, "kyx": 0.0, "kyy": k,
+                    "cxx": 150.0, "cyy": 150.0, "loss_factor": eta});
+    }
+    let mut anisotropic = rotor.clone();
+    let k = anisotropic["supports"][0]["kxx"].as_f64().unwrap();
+    anisotropic["supports"][0]["kyy"] = json!(k * (1.0 + epsilon));
+    let mut iso = iso;
+    for s in iso["supports"].as_array_mut().unwrap() {
+        s["damping"] = json!(150.0);
+    }
+    let general = system(&rotor);
+    assert_eq!(general.layout(), Layout::Single);
+    let a = system(&anisotropic);
+    assert_eq!(a.layout(), Layout::Doubled);
+    // The isotropic form and the general form with equal, uncoupled coefficients.
+    let isotropic = system(&iso);
+    assert!(isotropic.supports.is_empty() && !general.supports.is_empty());
+    for model in all_models(isotropic.n()) {
+        let p = DampedModel::build(&isotropic, &model).unwrap();
+        let q = DampedModel::build(&general, &model).unwrap();
+        for speed in [0.0, 1400.0, 3500.0] {
+            let (a, b) = (poles_at(&p, speed).unwrap(), poles_at(&q, speed).unwrap());
+            let e = distance(
+                &a.all().map(|p| p.s).collect::<Vec<_>>(),
+                &b.all().map(|p| p.s).collect::<Vec<_>>(),
+            );
+            assert!(e <= 1e-9, "{} at {speed}: {e:.2e}", model.name());
+        }
+    }
+    (general, a)
+}
+
+fn all_models(n: usize) -> Vec<DampingModel> {
+    vec![
+        damping(json!({"model": "viscous"}), n),
+        damping(json!({"model": "hysteretic"}), n),
+        damping(json!({"model": "equivalent"}), n),
+        damping(json!({"model": "nonviscous"}), n),
+    ]
+}
+
+#[test]
+fn isotropic_limits_of_the_general_form_and_of_doubled_coordinates() {
+    // The general form with 8 equal-and-uncoupled coefficients gives the isotropic form's
+    // poles (checked inside), and the doubled problem of a barely anisotropic rotor reports
+    // the single problem's poles, each once, under every model.
+    let (single, doubled) = example1_general(1e-10);
+    for model in all_models(single.n()) {
+        let p = DampedModel::build(&single, &model).unwrap();
+        let q = DampedModel::build(&doubled, &model).unwrap();
+        for speed in [0.0, 1400.0, 3500.0] {
+            let (a, b) = (poles_at(&p, speed).unwrap(), poles_at(&q, speed).unwrap());
+            // At rest forward and backward whirl are degenerate, and any two orbits of the
+            // pair are modes: compare frequencies without their sign there.
+            let key = |s: c64| {
+                if speed == 0.0 {
+                    c64::new(s.re, s.im.abs())
+                } else {
+                    s
+                }
+            };
+            let ra: Vec<c64> = a.rotor.iter().map(|p| key(p.s)).collect();
+            let rb: Vec<c64> = b.rotor.iter().map(|p| key(p.s)).collect();
+            assert_eq!(ra.len(), rb.len(), "{} at {speed}", model.name());
+            let e = distance(&ra, &rb);
+            assert!(
+                e <= 1e-7,
+                "{} at {speed}: rotor poles {e:.2e}",
+                model.name()
+            );
+            for p in b.rotor.iter().filter(|_| speed > 0.0) {
+                assert!(
+                    (p.whirl_ratio.abs() - 1.0).abs() < 1e-4,
+                    "{}: circular whirl, got ratio {}",
+                    model.name(),
+                    p.whirl_ratio
+                );
+            }
+            // Internal poles: the single problem's, each once.
+            let ia: Vec<c64> = a.internal.iter().map(|p| p.s).collect();
+            let ib: Vec<c64> = b.internal.iter().map(|p| p.s).collect();
+            if !ia.is_empty() {
+                assert!(
+                    distance(&ia, &ib) <= 1e-6,
+                    "{} internal at {speed}",
+                    model.name()
+                );
+            }
+        }
+    }
+}

@@ -407,7 +407,11 @@ fn unbalance_response_of_a_viscous_jeffcott_is_the_closed_form() {
                 "{w}: {} vs {exact}",
                 row[0].a
             );
-            assert_eq!(row[0].b, c64::new(0.0, 0.0), "circular on isotropic supports");
+            assert_eq!(
+                row[0].b,
+                c64::new(0.0, 0.0),
+                "circular on isotropic supports"
+            );
         }
     }
 }

@@ -191,44 +191,43 @@ fn forward_weight(p: &Pole, y_weight: f64) -> f64 {
     }
 }
 
-/// Each mirror pair `(s, conj s)` of a doubled model once (see the module docs). A real pole
-/// is its own mirror: kept, once per distinct value.
+/// Each mirror pair `(s, conj s)` of a doubled model once (see the module docs): every pole is
+/// paired with the nearest conjugate of its value, the most definitely forward or backward
+/// first, and the member with more of its shape in `r` is kept (for a planar mode, the one with
+/// `omega >= 0`). A real pole without a partner is its own mirror: kept.
 fn once_each(poles: Vec<(Pole, f64)>) -> Vec<Pole> {
     const TIE: f64 = 1e-8;
-    let real = |p: &Pole| p.s.im.abs() <= 1e-9 * p.s.norm();
+    let f: Vec<f64> = poles.iter().map(|(p, w)| forward_weight(p, *w)).collect();
+    let mut order: Vec<usize> = (0..poles.len()).collect();
+    order.sort_by(|&i, &j| f[j].abs().total_cmp(&f[i].abs()));
+    let mut used = vec![false; poles.len()];
     let mut out = vec![];
-    let mut ties = vec![];
-    for (p, w) in poles {
-        let f = forward_weight(&p, w);
-        if real(&p) || f.abs() <= TIE {
-            ties.push(p);
-        } else if f > 0.0 {
-            out.push(p);
-        }
-    }
-    // Planar modes (equal in `r` and `conj r`) and real poles: pair each with its mirror, if
-    // it has one, and keep one of the two.
-    let mut used = vec![false; ties.len()];
-    for i in 0..ties.len() {
+    for &i in &order {
         if used[i] {
             continue;
         }
         used[i] = true;
-        let target = ties[i].s.conj();
-        let mirror = (0..ties.len())
-            .filter(|&j| !used[j] && (ties[j].s - target).norm() <= 1e-6 * target.norm())
-            .min_by(|&j, &k| {
-                let d = |m: usize| (ties[m].s - target).norm();
-                d(j).total_cmp(&d(k))
-            });
-        match mirror {
+        let target = poles[i].0.s.conj();
+        let near = |j: usize| (poles[j].0.s - target).norm();
+        let mirror = (0..poles.len())
+            .filter(|&j| !used[j] && near(j) <= 1e-6 * target.norm().max(f64::MIN_POSITIVE))
+            .min_by(|&j, &k| near(j).total_cmp(&near(k)));
+        let keep = match mirror {
+            None => i,
             Some(j) => {
                 used[j] = true;
-                let keep = if ties[i].s.im >= ties[j].s.im { i } else { j };
-                out.push(ties[keep].clone());
+                if f[i] > f[j] + TIE {
+                    i
+                } else if f[j] > f[i] + TIE {
+                    j
+                } else if poles[i].0.s.im >= poles[j].0.s.im {
+                    i
+                } else {
+                    j
+                }
             }
-            None => out.push(ties[i].clone()),
-        }
+        };
+        out.push(poles[keep].0.clone());
     }
     out
 }
@@ -246,7 +245,11 @@ fn pole(s: c64, x: Vec<c64>, y: Vec<c64>, m: &StateModel, doubled: bool) -> (Pol
         let a = x[..h].iter().map(|z| z.norm_sqr()).sum::<f64>().sqrt();
         let b = x[h..].iter().map(|z| z.norm_sqr()).sum::<f64>().sqrt();
         let (f, bw) = if s.im >= 0.0 { (a, b) } else { (b, a) };
-        let ratio = if f + b > 0.0 { (f - bw) / (f + bw) } else { 0.0 };
+        let ratio = if f + b > 0.0 {
+            (f - bw) / (f + bw)
+        } else {
+            0.0
+        };
         let br = m.branches();
         let (mut yr, mut yc) = (0.0, 0.0);
         for (j, v) in y.iter().enumerate() {
@@ -256,7 +259,11 @@ fn pole(s: c64, x: Vec<c64>, y: Vec<c64>, m: &StateModel, doubled: bool) -> (Pol
                 yc += v.norm_sqr();
             }
         }
-        let w = if yr + yc > 0.0 { (yr - yc) / (yr + yc) } else { 0.0 };
+        let w = if yr + yc > 0.0 {
+            (yr - yc) / (yr + yc)
+        } else {
+            0.0
+        };
         (ratio, w)
     } else if s.im >= 0.0 {
         (1.0, 0.0)

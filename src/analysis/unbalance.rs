@@ -88,7 +88,8 @@ pub fn unbalance_response(
                         };
                         diag - a[(i, j)]
                     });
-                    let fm = CMat::from_fn(big, 1, |i, _| if i < n { f[i] } else { c64::new(0.0, 0.0) });
+                    let fm =
+                        CMat::from_fn(big, 1, |i, _| if i < n { f[i] } else { c64::new(0.0, 0.0) });
                     let minv_f = linalg::mass_solve(&r.mass, &fm)?;
                     let rhs = CMat::from_fn(size, 1, |i, _| {
                         if i < big {
@@ -110,14 +111,16 @@ pub fn unbalance_response(
                     let lhs = CMat::from_fn(big, big, |a, b| {
                         let rot = if r.spin[a] > 0.0 { 0.0 } else { s };
                         r.mass[(a, b)] * (-w * w)
-                            + (r.damping_nonrotating[(a, b)] + r.damping_rotating[(a, b)]) * (i1 * w)
+                            + (r.damping_nonrotating[(a, b)] + r.damping_rotating[(a, b)])
+                                * (i1 * w)
                             + sg[(a, b)] * (w * w)
                             + r.stiffness[(a, b)]
                             - scr[(a, b)] * (i1 * w)
                             + r.loss_nonrotating[(a, b)] * (i1 * s)
                             + r.loss_rotating[(a, b)] * (i1 * rot)
                     });
-                    let rhs = CMat::from_fn(big, 1, |i, _| if i < n { f[i] } else { c64::new(0.0, 0.0) });
+                    let rhs =
+                        CMat::from_fn(big, 1, |i, _| if i < n { f[i] } else { c64::new(0.0, 0.0) });
                     let z = linalg::solve_complex(&lhs, &rhs)?;
                     (0..big).map(|i| z[(i, 0)]).collect()
                 }
@@ -127,7 +130,11 @@ pub fn unbalance_response(
                 .iter()
                 .map(|&d| Orbit {
                     a: q[d],
-                    b: if big > n { q[n + d] } else { c64::new(0.0, 0.0) },
+                    b: if big > n {
+                        q[n + d]
+                    } else {
+                        c64::new(0.0, 0.0)
+                    },
                 })
                 .collect())
         })

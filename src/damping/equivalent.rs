@@ -7,9 +7,11 @@
 //! (light damping). The rotating part is rotating damping: it brings `-i Omega C_eq,r`.
 //! Jeffcott: `c_eq = k''/w_n`, threshold `Omega* = 1 + eta_n / eta_r` (eq. 10).
 //!
-//! On supports that are not isotropic, the nonrotating part is built on the real x/y modes
-//! (doubled coordinates), and the rotating part, which lives in the rotor where x and y cannot
-//! be told apart, on the rotor's axisymmetric modes, the same on both blocks.
+//! On supports that are not isotropic both parts are built on the real x/y modes (doubled
+//! coordinates): each x/y mode then gets its own share of the shaft's loss, which depends on
+//! how much of its strain energy is in the shaft, in x and in y. The rotating part acts on the
+//! velocity relative to the rotor, `C_eq,r (q' - i Omega S q)` (`S`: the sign of the spin terms
+//! per row), as the rotating viscous damping does.
 
 use super::Bases;
 use super::state::SecondOrder;
@@ -59,18 +61,32 @@ pub fn equivalent_matrix(k_loss: &RMat, mass: &RMat, basis: &ModalBasis) -> RMat
     c
 }
 
+/// `C_eq,r` and `C_eq,n` of a realization, in its layout.
+pub fn matrices(r: &Realized, rotor_loss: &RMat, bases: &Bases) -> (CMat, CMat) {
+    match &bases.xy {
+        None => {
+            let c_r = equivalent_matrix(rotor_loss, &bases.axis_mass, &bases.axis);
+            let c_n = equivalent(
+                &r.loss_nonrotating,
+                &linalg::to_complex(&bases.axis_mass),
+                &bases.axis.omega,
+                &linalg::to_complex(&bases.axis.phi),
+            );
+            (linalg::to_complex(&c_r), c_n)
+        }
+        Some((xy, mass)) => (
+            equivalent(&r.loss_rotating, mass, &xy.omega, &xy.phi),
+            equivalent(&r.loss_nonrotating, mass, &xy.omega, &xy.phi),
+        ),
+    }
+}
+
 /// The rotor with `C_n + C_eq,n` and `C_r + C_eq,r`.
 pub fn second_order(r: &Realized, rotor_loss: &RMat, bases: &Bases) -> SecondOrder {
-    let c_r = linalg::to_complex(&equivalent_matrix(rotor_loss, &bases.axis_mass, &bases.axis));
-    let c_n = match &bases.xy {
-        None => equivalent(
-            &r.loss_nonrotating,
-            &linalg::to_complex(&bases.axis_mass),
-            &bases.axis.omega,
-            &linalg::to_complex(&bases.axis.phi),
-        ),
-        Some((xy, mass)) => equivalent(&r.loss_nonrotating, mass, &xy.omega, &xy.phi),
-    };
-    let c_r = r.on_blocks(&c_r);
-    SecondOrder::with_damping(r, &(&r.damping_nonrotating + &c_n), &(&r.damping_rotating + &c_r))
+    let (c_r, c_n) = matrices(r, rotor_loss, bases);
+    SecondOrder::with_damping(
+        r,
+        &(&r.damping_nonrotating + &c_n),
+        &(&r.damping_rotating + &c_r),
+    )
 }

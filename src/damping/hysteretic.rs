@@ -77,7 +77,10 @@ pub fn signed_models(r: &Realized) -> Result<Vec<SignedModel>, LinalgError> {
                 nonrotating: a,
                 rotating: b,
                 counter: c,
-                model: StateModel::new(&signed_second_order(r, (a, b, c)), &Branches::none(r.size()))?,
+                model: StateModel::new(
+                    &signed_second_order(r, (a, b, c)),
+                    &Branches::none(r.size()),
+                )?,
             })
         })
         .collect()

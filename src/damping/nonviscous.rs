@@ -157,18 +157,30 @@ pub fn branches(
     let (omega_n, coupling_n, loss_n): (&[f64], CMat, Vec<Vec<f64>>) = match &bases.xy {
         None => {
             let phi = linalg::to_complex(&axis.phi);
-            let loss = realized.iter().map(|r| modal_loss(&r.loss_nonrotating, &phi)).collect();
+            let loss = realized
+                .iter()
+                .map(|r| modal_loss(&r.loss_nonrotating, &phi))
+                .collect();
             (&axis.omega, axis_coupling.clone(), loss)
         }
         Some((xy, mass)) => {
-            let loss = realized.iter().map(|r| modal_loss(&r.loss_nonrotating, &xy.phi)).collect();
+            let loss = realized
+                .iter()
+                .map(|r| modal_loss(&r.loss_nonrotating, &xy.phi))
+                .collect();
             (&xy.omega, mass * &xy.phi, loss)
         }
     };
     let mut out: Vec<Branches> = realized.iter().map(|_| Branches::none(n_layout)).collect();
     let mut columns: Vec<Vec<crate::linalg::c64>> = vec![];
     let zero = crate::linalg::c64::new(0.0, 0.0);
-    let mut add = |set: &BranchSet, w: f64, loss: &[f64], mode: usize, spin: f64, col: Vec<crate::linalg::c64>, out: &mut Vec<Branches>| {
+    let mut add = |set: &BranchSet,
+                   w: f64,
+                   loss: &[f64],
+                   mode: usize,
+                   spin: f64,
+                   col: Vec<crate::linalg::c64>,
+                   out: &mut Vec<Branches>| {
         for (j, d) in set.rates(w).into_iter().enumerate() {
             for (b, l) in out.iter_mut().zip(loss) {
                 let k = l * set.gamma[j];
@@ -182,14 +194,34 @@ pub fn branches(
             columns.push(col.clone());
         }
     };
-    let nonrotating = |i: usize, out: &mut Vec<Branches>, add: &mut dyn FnMut(&BranchSet, f64, &[f64], usize, f64, Vec<crate::linalg::c64>, &mut Vec<Branches>)| {
+    let nonrotating = |i: usize,
+                       out: &mut Vec<Branches>,
+                       add: &mut dyn FnMut(
+        &BranchSet,
+        f64,
+        &[f64],
+        usize,
+        f64,
+        Vec<crate::linalg::c64>,
+        &mut Vec<Branches>,
+    )| {
         let loss: Vec<f64> = loss_n.iter().map(|l| l[i].max(0.0)).collect();
         if loss.iter().any(|&l| l > 0.0) {
             let col = (0..n_layout).map(|r| coupling_n[(r, i)]).collect();
             add(&spec.nonrotating, omega_n[i], &loss, i, 0.0, col, out);
         }
     };
-    let rotating = |i: usize, out: &mut Vec<Branches>, add: &mut dyn FnMut(&BranchSet, f64, &[f64], usize, f64, Vec<crate::linalg::c64>, &mut Vec<Branches>)| {
+    let rotating = |i: usize,
+                    out: &mut Vec<Branches>,
+                    add: &mut dyn FnMut(
+        &BranchSet,
+        f64,
+        &[f64],
+        usize,
+        f64,
+        Vec<crate::linalg::c64>,
+        &mut Vec<Branches>,
+    )| {
         let l = loss_r[(i, i)];
         if l <= 0.0 {
             return;
@@ -231,7 +263,11 @@ pub fn branches(
 fn modal_loss(k_loss: &CMat, phi: &CMat) -> Vec<f64> {
     let kp = k_loss * phi;
     (0..phi.ncols())
-        .map(|i| (0..phi.nrows()).map(|r| (phi[(r, i)].conj() * kp[(r, i)]).re).sum())
+        .map(|i| {
+            (0..phi.nrows())
+                .map(|r| (phi[(r, i)].conj() * kp[(r, i)]).re)
+                .sum()
+        })
         .collect()
 }
 

@@ -144,14 +144,7 @@ pub fn matrices(
             .expect("one realization");
         spec = Some(s);
     } else {
-        let so = equivalent::second_order(&r, rotor_loss, &bases);
-        let eq_n = &so.d0 - &(&r.damping_nonrotating + &r.damping_rotating);
-        let eq_r = r.on_blocks(&linalg::to_complex(&equivalent::equivalent_matrix(
-            rotor_loss,
-            &bases.axis_mass,
-            &bases.axis,
-        )));
-        let eq_n = &eq_n - &eq_r;
+        let (eq_r, eq_n) = equivalent::matrices(&r, rotor_loss, &bases);
         c_n = &c_n + &eq_n;
         c_r = &c_r + &eq_r;
         equivalent = Some((eq_r, eq_n));
@@ -165,8 +158,8 @@ pub fn matrices(
     }
     let state = if options.state_form {
         let lin = |e: linalg::LinalgError| ReportError::Damping(DampingError::Linalg(e));
-        let sm = StateModel::new(&SecondOrder::with_damping(&r, &c_n, &c_r), &branches)
-            .map_err(lin)?;
+        let sm =
+            StateModel::new(&SecondOrder::with_damping(&r, &c_n, &c_r), &branches).map_err(lin)?;
         let n = r.size();
         let identity = CMat::from_fn(n, n, |i, j| {
             linalg::c64::new(if i == j { 1.0 } else { 0.0 }, 0.0)
@@ -202,7 +195,11 @@ pub fn matrices(
     let loss_n: Vec<f64> = if r_single.layout == crate::system::Layout::Single {
         let kp = &r_single.loss_nonrotating * &phi;
         (0..axis.len())
-            .map(|i| (0..phi.nrows()).map(|k| (phi[(k, i)].conj() * kp[(k, i)]).re).sum())
+            .map(|i| {
+                (0..phi.nrows())
+                    .map(|k| (phi[(k, i)].conj() * kp[(k, i)]).re)
+                    .sum()
+            })
             .collect()
     } else {
         // Doubled: the nonrotating loss of the x/y pair of each axisymmetric mode, averaged.
@@ -270,7 +267,13 @@ pub struct Augmented {
 pub fn augmented(r: &Realized, dofs: &[Dof], c_n: &CMat, c_r: &CMat, br: &Branches) -> Augmented {
     let (n, p) = (r.size(), br.len());
     let zero = linalg::c64::new(0.0, 0.0);
-    let pad = |a: &CMat| CMat::from_fn(n + p, n + p, |i, j| if i < n && j < n { a[(i, j)] } else { zero });
+    let pad = |a: &CMat| {
+        CMat::from_fn(
+            n + p,
+            n + p,
+            |i, j| if i < n && j < n { a[(i, j)] } else { zero },
+        )
+    };
     let mut stiffness = pad(&r.stiffness);
     let mut c_r = pad(c_r);
     let mut c_n = pad(c_n);

@@ -32,7 +32,9 @@ pub struct SecondOrder {
 
 /// `(A + A^H) / 2`.
 pub fn hermitian_part(a: &CMat) -> CMat {
-    CMat::from_fn(a.nrows(), a.ncols(), |i, j| (a[(i, j)] + a[(j, i)].conj()) * 0.5)
+    CMat::from_fn(a.nrows(), a.ncols(), |i, j| {
+        (a[(i, j)] + a[(j, i)].conj()) * 0.5
+    })
 }
 
 impl SecondOrder {

@@ -90,7 +90,9 @@ pub fn beam(rotor: &BeamRotor) -> Result<RotorSystem, LinalgError> {
         .general_supports()
         .iter()
         .map(|g| PlacedSupport {
-            dof: s.translation(g.node).expect("validated: every node has a translation"),
+            dof: s
+                .translation(g.node)
+                .expect("validated: every node has a translation"),
             support: g.clone(),
         })
         .collect();

@@ -41,10 +41,12 @@ pub fn reduce(system: &RotorSystem, keep: &[bool]) -> Result<RotorSystem, Linalg
             .supports
             .iter()
             .filter_map(|p| {
-                kept.iter().position(|&i| i == p.dof).map(|dof| crate::system::PlacedSupport {
-                    dof,
-                    support: p.support.clone(),
-                })
+                kept.iter()
+                    .position(|&i| i == p.dof)
+                    .map(|dof| crate::system::PlacedSupport {
+                        dof,
+                        support: p.support.clone(),
+                    })
             })
             .collect(),
     })

@@ -227,7 +227,9 @@ pub fn hermitian_modes(k: &CMat, m: &CMat) -> Result<HermitianModes, LinalgError
     let s = e.S().column_vector();
     let omega_squared: Vec<f64> = (0..n).map(|i| s[i].re).collect();
     let mut phi = e.U().to_owned();
-    l.as_ref().adjoint().solve_upper_triangular_in_place(phi.as_mut());
+    l.as_ref()
+        .adjoint()
+        .solve_upper_triangular_in_place(phi.as_mut());
     if omega_squared.iter().any(|v| !v.is_finite()) || !all_finite_c(&phi) {
         return Err(LinalgError::NonFinite);
     }

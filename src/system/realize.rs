@@ -224,6 +224,8 @@ mod tests {
         assert_eq!(r.spin, vec![1.0, -1.0]);
         // Loss: 0.1 of the symmetric part, [[3, -0.5], [-0.5, 5]].
         let lr = r.loss_nonrotating[(0, 0)] * q[0] + r.loss_nonrotating[(0, 1)] * q[1];
-        assert!((lr - c64::new(0.1 * (3.0 * x - 0.5 * y), 0.1 * (-0.5 * x + 5.0 * y))).norm() < 1e-14);
+        assert!(
+            (lr - c64::new(0.1 * (3.0 * x - 0.5 * y), 0.1 * (-0.5 * x + 5.0 * y))).norm() < 1e-14
+        );
     }
 }

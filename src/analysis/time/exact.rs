@@ -60,7 +60,12 @@ pub fn solve(
         cols.push(forcing.force_column(dof, f.direction));
     }
     let mut whirls: Vec<(usize, usize, f64)> = vec![];
-    for (u, (ub, &dof)) in spec.unbalances.iter().zip(&forcing.unbalance_dofs).enumerate() {
+    for (u, (ub, &dof)) in spec
+        .unbalances
+        .iter()
+        .zip(&forcing.unbalance_dofs)
+        .enumerate()
+    {
         for (col, sense) in forcing.unbalance_columns(dof, ub.phase) {
             whirls.push((u, cols.len(), sense));
             cols.push(col);

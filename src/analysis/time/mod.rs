@@ -19,9 +19,9 @@ use super::control::{Cancelled, Control};
 use crate::damping::state::StateModel;
 use crate::damping::{DampedModel, ModelKind};
 use crate::linalg::{self, CMat, LinalgError, c64};
-use crate::system::{Layout, Realized};
 pub use crate::model::loads::{SpeedLaw, TimeSpec};
 use crate::system::{DofKind, RotorSystem};
+use crate::system::{Layout, Realized};
 
 /// How the response was computed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -110,8 +110,9 @@ impl<'a> Forcing<'a> {
     pub fn new(system: &RotorSystem, spec: &'a TimeSpec, size: usize) -> Result<Self, LinalgError> {
         let r = Realized::at(system, spec.speed.omega(0.0));
         let big = r.size();
-        let identity =
-            CMat::from_fn(big, big, |i, j| c64::new(if i == j { 1.0 } else { 0.0 }, 0.0));
+        let identity = CMat::from_fn(big, big, |i, j| {
+            c64::new(if i == j { 1.0 } else { 0.0 }, 0.0)
+        });
         Ok(Forcing {
             spec,
             force_dofs: spec
@@ -187,7 +188,10 @@ impl<'a> Forcing<'a> {
     pub fn unbalance_columns(&self, dof: usize, phase: f64) -> Vec<(Vec<c64>, f64)> {
         let mut out = vec![(self.apply_m_inv(&[(dof, c64::from_polar(1.0, phase))]), 1.0)];
         if let Some(n) = self.doubled {
-            out.push((self.apply_m_inv(&[(n + dof, c64::from_polar(1.0, -phase))]), -1.0));
+            out.push((
+                self.apply_m_inv(&[(n + dof, c64::from_polar(1.0, -phase))]),
+                -1.0,
+            ));
         }
         out
     }
