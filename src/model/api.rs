@@ -465,6 +465,10 @@ pub struct ModalResponse {
     /// speed: no sign-consistent root), counted against the number of rotor poles (2 per
     /// complex degree of freedom).
     pub missing_poles: usize,
+    /// How the model was read where it needed saying: supports held at the ends of their
+    /// tables of coefficients outside them.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<String>,
 }
 
 /// One Campbell branch: the same physical mode followed from speed to speed.
@@ -492,6 +496,10 @@ pub struct CampbellResponse {
     pub threshold: Option<f64>,
     /// The modal reduction the sweep ran on; null when it ran on the full model.
     pub reduction: Option<ReductionInfo>,
+    /// How the model was read where it needed saying: supports held at the ends of their
+    /// tables of coefficients outside them.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<String>,
 }
 
 /// A sweep solved on the lowest undamped nonrotating modes (a Rayleigh-Ritz reduction), and how
@@ -532,6 +540,10 @@ pub struct StabilityResponse {
     pub speeds: Vec<f64>,
     /// Largest decay rate of all poles at each grid speed, 1/s.
     pub max_decay_rate: Vec<f64>,
+    /// How the model was read where it needed saying: supports held at the ends of their
+    /// tables of coefficients outside them.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<String>,
 }
 
 /// `GET /healthz`, `GET /readyz`.
@@ -744,6 +756,10 @@ pub struct DampingMatricesResponse {
     pub branches_rotating: Option<usize>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub branches_nonrotating: Option<usize>,
+    /// How the model was read where it needed saying: supports held at the ends of their
+    /// tables of coefficients outside them.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<String>,
 }
 
 /// A nonrotating force with a fixed direction.
@@ -833,6 +849,10 @@ pub struct TimeResponseResponse {
     pub steps: usize,
     /// Size of the state.
     pub states: usize,
+    /// How the model was read where it needed saying: supports held at the ends of their
+    /// tables of coefficients outside them.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<String>,
 }
 
 /// Unbalance for the steady response (no `from`).
@@ -890,6 +910,10 @@ pub struct UnbalanceResponseResponse {
     pub nodes: Vec<NodeUnbalance>,
     /// How the damping model treats synchronous whirl.
     pub note: String,
+    /// How the model was read where it needed saying: supports held at the ends of their
+    /// tables of coefficients outside them.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<String>,
 }
 
 /// An analysis a job can run: the synchronous endpoint of the same name.

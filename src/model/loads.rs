@@ -207,6 +207,25 @@ impl SpeedLaw {
         }
     }
 
+    /// The lowest and highest speed over `[0, duration]`.
+    pub fn range(&self, duration: f64) -> (f64, f64) {
+        match self {
+            SpeedLaw::Constant(w) => (*w, *w),
+            SpeedLaw::Profile(p) => {
+                let mut ts: Vec<f64> = p
+                    .breakpoints()
+                    .filter(|&t| t > 0.0 && t < duration)
+                    .collect();
+                ts.extend([0.0, duration]);
+                ts.iter()
+                    .map(|&t| p.value(t))
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+                        (a.min(v), b.max(v))
+                    })
+            }
+        }
+    }
+
     /// The speed, if it never changes.
     pub fn constant(&self) -> Option<f64> {
         match self {

@@ -148,7 +148,7 @@ pub fn parse_supports(
         let node = node_ok(bad, format!("{at}.node"), s.node);
         if supports::is_general(s) {
             if let (Some(g), Some(_)) = (
-                supports::parse_general(s, node.unwrap_or(0), &at, bad),
+                supports::parse_general(s, i, node.unwrap_or(0), &at, bad),
                 node,
             ) {
                 general.push(g);

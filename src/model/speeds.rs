@@ -75,4 +75,9 @@ impl SpeedGrid {
     pub fn as_slice(&self) -> &[f64] {
         &self.0
     }
+
+    /// First and last speed.
+    pub fn range(&self) -> (f64, f64) {
+        (self.0[0], self.0[self.0.len() - 1])
+    }
 }

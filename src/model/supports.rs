@@ -111,6 +111,8 @@ pub enum Law {
 /// A validated support in the general form.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GeneralSupport {
+    /// Its position in the request's `supports`.
+    pub index: usize,
     pub node: usize,
     pub law: Law,
     /// Its hysteretic stiffness is `loss_factor` times the symmetric part of `K`.
@@ -236,6 +238,7 @@ pub fn is_general(s: &SupportInput) -> bool {
 /// Validates the general form of `s` (at path `at`), its node already checked.
 pub fn parse_general(
     s: &SupportInput,
+    index: usize,
     node: usize,
     at: &str,
     bad: &mut Invalid,
@@ -323,6 +326,7 @@ pub fn parse_general(
         },
     };
     Some(GeneralSupport {
+        index,
         node,
         law,
         loss_factor: eta?,
@@ -395,6 +399,7 @@ mod tests {
             ..Coefficients::default()
         };
         let s = GeneralSupport {
+            index: 0,
             node: 0,
             law: Law::Table {
                 speeds: vec![100.0, 200.0, 400.0],

@@ -13,6 +13,7 @@ use super::limits::{BATCH_PER_THREAD, Cost, Limits, Size};
 use super::loads::{Force, Pwl, SpeedLaw, TimeSpec, Unbalance, sample_count};
 use super::rotor::Rotor;
 use super::speeds::SpeedGrid;
+use super::supports::held_warning;
 use crate::damping::nonviscous::BranchSet;
 
 /// A validated rotor and damping model.
@@ -95,6 +96,30 @@ impl Model {
         self.size_with(None)
     }
 
+    /// Warnings for analysis speeds in `[lo, hi]` outside a support's table, and for modal
+    /// bases taken at rest below a table.
+    pub fn warnings(&self, lo: f64, hi: f64) -> Vec<String> {
+        let mut out = vec![];
+        for s in self.rotor.general_supports() {
+            let path = format!("rotor.supports[{}]", s.index);
+            if let Some(w) = held_warning(&path, s, lo, hi) {
+                out.push(w);
+            }
+            let modal = matches!(
+                self.damping,
+                DampingModel::Equivalent { .. } | DampingModel::Nonviscous(_)
+            );
+            if modal && s.speeds().first().is_some_and(|&w| w > 0.0) {
+                out.push(format!(
+                    "{path}: the {} model is built on the modes of the rotor at rest, where \
+                     this support's coefficients are held at their first values",
+                    self.damping.name()
+                ));
+            }
+        }
+        out
+    }
+
     fn check_states(&self, limits: &Limits, bad: &mut Invalid) {
         let size = self.size();
         let states = size.states();
@@ -132,6 +157,9 @@ impl Model {
 pub struct Task {
     pub kind: TaskKind,
     pub cost: Cost,
+    /// What the answer should say about how the model was read (supports held outside their
+    /// tables).
+    pub warnings: Vec<String>,
 }
 
 #[derive(Debug, Clone)]
@@ -275,11 +303,10 @@ impl ModalRequest {
         let n = size.dofs as u64;
         let values = size.states() as u64 * 5 + 2 * n * model.rotor.node_count() as u64 * 3 + n;
         let cost = Cost::new(size, 1, 1, 0, values).with_work(size.eigen_work());
+        let speed = speed.expect("validated");
         Task {
-            kind: TaskKind::Modal {
-                model,
-                speed: speed.expect("validated"),
-            },
+            warnings: model.warnings(speed, speed),
+            kind: TaskKind::Modal { model, speed },
             cost,
         }
         .bounded(limits, "rotor")
@@ -308,7 +335,9 @@ impl SweepRequest {
         let values = count as u64 * (1 + 4 * size.dofs as u64);
         let cost = sweep_cost(size, count, limits, true, values);
         let bounded = self.max_frequency.is_none();
+        let (lo, hi) = speeds.range();
         let task = Task {
+            warnings: model.warnings(lo, hi),
             kind: TaskKind::Campbell {
                 model,
                 speeds,
@@ -330,7 +359,9 @@ impl SweepRequest {
         let size = model.size();
         let count = speeds.as_slice().len();
         let cost = sweep_cost(size, count, limits, false, 2 * count as u64 + 8);
+        let (lo, hi) = speeds.range();
         Ok(Task {
+            warnings: model.warnings(lo, hi),
             kind: TaskKind::Stability { model, speeds },
             cost,
         })
@@ -432,6 +463,7 @@ impl DampingMatricesRequest {
             };
         let cost = Cost::new(size, 0, 0, extra, values).with_work(size.eigen_work() / 10.0);
         Task {
+            warnings: model.warnings(speed, speed),
             kind: TaskKind::Damping {
                 model,
                 state_form,
@@ -596,7 +628,9 @@ impl TimeResponseRequest {
         };
         let work = size.eigen_work() + steps * 8.0 * (s * s) as f64;
         let cost = Cost::new(size, 2, 0, extra, values).with_work(work);
+        let (lo, hi) = spec.speed.range(spec.duration);
         Task {
+            warnings: model.warnings(lo, hi),
             kind: TaskKind::Time { model, spec },
             cost,
         }
@@ -638,7 +672,9 @@ impl UnbalanceResponseRequest {
         let extra = threads * 3 * 16 * s * s + count * out.len() as u64 * 16;
         let work = count as f64 * (s * s * s) as f64 * 3.0;
         let cost = Cost::new(size, 0, 0, extra, values).with_work(work);
+        let (lo, hi) = speeds.range();
         Task {
+            warnings: model.warnings(lo, hi),
             kind: TaskKind::Unbalance {
                 model,
                 speeds,

@@ -75,6 +75,7 @@ pub fn modal(r: &ModalResult) -> api::ModalResponse {
         .collect();
     poles.extend(r.poles.internal.iter().map(pole));
     api::ModalResponse {
+        warnings: vec![],
         speed: r.poles.speed,
         poles,
         natural_frequencies: r.natural_frequencies.clone(),
@@ -85,6 +86,7 @@ pub fn modal(r: &ModalResult) -> api::ModalResponse {
 
 pub fn campbell(r: &CampbellResult) -> api::CampbellResponse {
     api::CampbellResponse {
+        warnings: vec![],
         speeds: r.speeds.clone(),
         branches: r
             .branches
@@ -116,6 +118,7 @@ pub fn stability(
     max_decay_rate: Vec<f64>,
 ) -> api::StabilityResponse {
     api::StabilityResponse {
+        warnings: vec![],
         speeds: speeds.to_vec(),
         max_decay_rate,
         threshold: t.map(|t| t.speed),
@@ -268,6 +271,7 @@ pub fn damper(f: &DamperFit) -> api::DamperReport {
 
 pub fn damping_matrices(r: &ModelMatrices, model: &str) -> api::DampingMatricesResponse {
     api::DampingMatricesResponse {
+        warnings: vec![],
         model: model.into(),
         coordinates: coordinates(&r.augmented.coordinates),
         second_order: r.state.is_none().then(|| second_order(&r.augmented)),
@@ -299,6 +303,7 @@ pub fn damping_matrices(r: &ModelMatrices, model: &str) -> api::DampingMatricesR
 
 pub fn time_response(r: &TimeResult) -> api::TimeResponseResponse {
     api::TimeResponseResponse {
+        warnings: vec![],
         time: r.time.clone(),
         nodes: r
             .nodes
@@ -340,6 +345,7 @@ pub fn unbalance_response(
         q.iter().map(|row| f(&row[k])).collect()
     };
     api::UnbalanceResponseResponse {
+        warnings: vec![],
         speeds: speeds.to_vec(),
         nodes: nodes
             .iter()

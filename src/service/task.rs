@@ -77,6 +77,17 @@ impl Output {
         })
     }
 
+    fn set_warnings(&mut self, w: Vec<String>) {
+        match self {
+            Output::Modal(o) => o.warnings = w,
+            Output::Campbell(o) => o.warnings = w,
+            Output::Stability(o) => o.warnings = w,
+            Output::Damping(o) => o.warnings = w,
+            Output::Time(o) => o.warnings = w,
+            Output::Unbalance(o) => o.warnings = w,
+        }
+    }
+
     /// Numbers in the answer, where only the analysis knows them (a Campbell sweep below a
     /// frequency bound); others were bounded when the request was parsed.
     fn values(&self) -> u64 {
@@ -89,7 +100,8 @@ impl Output {
 
 /// Runs a task to its output, refusing an answer beyond `max_bytes`.
 pub fn execute(task: &Task, control: &Control, max_bytes: u64) -> Result<Output, ApiError> {
-    let out = Output::from(run(task, control)?);
+    let mut out = Output::from(run(task, control)?);
+    out.set_warnings(task.warnings.clone());
     let bytes = out.values() * BYTES_PER_VALUE;
     if bytes > max_bytes {
         return Err(ApiError::Unsolvable(format!(
@@ -298,15 +310,16 @@ pub fn csv(out: &Output) -> Option<String> {
     let mut s = String::new();
     match out {
         Output::Modal(m) => {
-            s.push_str("decay_rate,frequency,whirl,damping_ratio,log_decrement\n");
+            s.push_str("decay_rate,frequency,whirl,damping_ratio,log_decrement,whirl_ratio\n");
             for p in &m.poles {
                 let whirl = serde_json::to_value(p.whirl).ok()?.as_str()?.to_string();
                 s.push_str(&format!(
-                    "{},{},{whirl},{},{}\n",
+                    "{},{},{whirl},{},{},{}\n",
                     p.decay_rate,
                     p.frequency,
                     p.damping_ratio,
-                    num(p.log_decrement)
+                    num(p.log_decrement),
+                    num(p.whirl_ratio)
                 ));
             }
         }
@@ -359,13 +372,35 @@ pub fn csv(out: &Output) -> Option<String> {
         Output::Unbalance(u) => {
             s.push_str("speed");
             for n in &u.nodes {
-                s.push_str(&format!(",node{}_amplitude,node{}_phase", n.node, n.node));
+                for c in [
+                    "amplitude",
+                    "phase",
+                    "x_amplitude",
+                    "x_phase",
+                    "y_amplitude",
+                    "y_phase",
+                    "major",
+                    "minor",
+                ] {
+                    s.push_str(&format!(",node{}_{c}", n.node));
+                }
             }
             s.push('\n');
             for (i, w) in u.speeds.iter().enumerate() {
                 s.push_str(&format!("{w}"));
                 for n in &u.nodes {
-                    s.push_str(&format!(",{},{}", n.amplitude[i], n.phase[i]));
+                    for c in [
+                        &n.amplitude,
+                        &n.phase,
+                        &n.x_amplitude,
+                        &n.x_phase,
+                        &n.y_amplitude,
+                        &n.y_phase,
+                        &n.major,
+                        &n.minor,
+                    ] {
+                        s.push_str(&format!(",{}", c[i]));
+                    }
                 }
                 s.push('\n');
             }

@@ -189,6 +189,7 @@ mod tests {
             supports: vec![PlacedSupport {
                 dof: 0,
                 support: GeneralSupport {
+                    index: 0,
                     node: 0,
                     law: Law::Constant(Coefficients {
                         k,
