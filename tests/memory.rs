@@ -137,7 +137,11 @@ fn every_estimate_bounds_the_measured_peak_heap() {
     h["speeds"] = json!({"start": 0, "stop": 3000, "count": 24});
     h.as_object_mut().unwrap().remove("max_frequency");
     cases.push(("stability, compressor, hysteretic", "stability", h));
-    cases.push(("modal, compressor NVD", "modal", example("compressor-nvd.modal.json")));
+    cases.push((
+        "modal, compressor NVD",
+        "modal",
+        example("compressor-nvd.modal.json"),
+    ));
     cases.push((
         "modal, full compressor viscous",
         "modal",
@@ -163,7 +167,10 @@ fn every_estimate_bounds_the_measured_peak_heap() {
         "damping",
         json!({"rotor": compressor["rotor"], "damping": {"model": "nonviscous", "modes": 8}, "form": "state"}),
     ));
-    println!("{:<40} {:>12} {:>12} {:>7}", "case", "measured MB", "estimate MB", "ratio");
+    println!(
+        "{:<40} {:>12} {:>12} {:>7}",
+        "case", "measured MB", "estimate MB", "ratio"
+    );
     for (name, kind, body) in cases {
         let task = parse(kind, body, &limits);
         let estimate = task.cost.peak_bytes as f64;
