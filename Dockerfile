@@ -12,13 +12,17 @@ RUN mkdir src benches && echo 'fn main() {}' > src/main.rs && echo '' > src/lib.
     && rm -rf src benches target/release/deps/whirl* target/release/deps/libwhirl* target/release/whirl*
 COPY src src
 COPY benches benches
+COPY migrations migrations
 RUN cargo build --release --locked --bin whirl && strip target/release/whirl
 
 FROM debian:bookworm-slim
-RUN useradd --system --uid 10001 --no-create-home --shell /usr/sbin/nologin whirl
+RUN useradd --system --uid 10001 --no-create-home --shell /usr/sbin/nologin whirl \
+    && mkdir /data && chown whirl /data
 COPY --from=build /src/target/release/whirl /usr/local/bin/whirl
 USER whirl
-ENV HOST=0.0.0.0 PORT=8080 RUST_LOG=info
+# The embedded job store (SQLite) lives here unless WHIRL_DATABASE_URL names a PostgreSQL.
+ENV HOST=0.0.0.0 PORT=8080 RUST_LOG=info WHIRL_DATA_DIR=/data
+VOLUME /data
 EXPOSE 8080
 # The binary checks itself: no curl in the image.
 HEALTHCHECK --interval=15s --timeout=3s --start-period=5s --retries=3 CMD ["whirl", "healthcheck"]

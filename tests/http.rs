@@ -363,7 +363,13 @@ async fn health_readiness_and_docs() {
         serde_json::from_slice::<Value>(&body).unwrap(),
         json!({"status": "ok"})
     );
-    let (status, _, _) = send(test_app(), "GET", "/readyz", None).await;
+    // Readiness asks the job store: one of this test's own.
+    let store = tempfile::tempdir().unwrap();
+    let ready = app(Config {
+        data_dir: store.path().to_path_buf(),
+        ..Config::default()
+    });
+    let (status, _, _) = send(ready, "GET", "/readyz", None).await;
     assert_eq!(status, StatusCode::OK);
     let (status, ctype, body) = send(test_app(), "GET", "/docs/", None).await;
     assert_eq!(status, StatusCode::OK);

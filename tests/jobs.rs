@@ -1,5 +1,6 @@
 //! The operable service: job lifecycle, cancellation latency, the queue bound under a burst,
-//! time limits, shutdown, plots and tables, metrics and request ids.
+//! time limits, shutdown, plots and tables, metrics and request ids. In process, each test
+//! with an embedded job store of its own (a temporary directory).
 
 use std::time::{Duration, Instant};
 
@@ -10,6 +11,16 @@ use http_body_util::BodyExt;
 use serde_json::{Value, json};
 use tower::ServiceExt;
 use whirl::service::{Config, app, app_with_state};
+
+/// The default settings, with a job store of this test's own (kept while the guard lives).
+fn config() -> (Config, tempfile::TempDir) {
+    let dir = tempfile::tempdir().unwrap();
+    let config = Config {
+        data_dir: dir.path().to_path_buf(),
+        ..Config::default()
+    };
+    (config, dir)
+}
 
 async fn call(
     app: &Router,
@@ -88,7 +99,8 @@ fn finished(v: &Value) -> bool {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_job_is_submitted_polled_and_fetched() {
-    let app = app(Config::default());
+    let (config, _dir) = config();
+    let app = app(config);
     let input = example("jeffcott-nvd.campbell.json");
     let (status, headers, body) = call(
         &app,
@@ -156,7 +168,8 @@ async fn a_job_is_submitted_polled_and_fetched() {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn invalid_job_input_is_refused_at_once_with_the_path() {
-    let app = app(Config::default());
+    let (config, _dir) = config();
+    let app = app(config);
     let (status, v) = json_call(&app, "POST", "/v1/jobs", Some(json!({"analysis": "modal",
         "input": {"rotor": {"type": "jeffcott", "mass": -1.0, "stiffness": 1.0}, "damping": {"model": "viscous"}}}))).await;
     assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
@@ -173,7 +186,8 @@ async fn invalid_job_input_is_refused_at_once_with_the_path() {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_running_job_reports_progress_and_stops_within_a_second_of_cancel() {
-    let app = app(Config::default());
+    let (config, _dir) = config();
+    let app = app(config);
     let (status, job) = json_call(&app, "POST", "/v1/jobs", Some(long_job())).await;
     assert_eq!(status, StatusCode::ACCEPTED);
     let id = job["id"].as_str().unwrap().to_string();
@@ -210,10 +224,11 @@ async fn a_running_job_reports_progress_and_stops_within_a_second_of_cancel() {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_burst_fills_the_queue_and_nothing_accepted_is_lost() {
+    let (config, _dir) = config();
     let app = app(Config {
         workers: 1,
         queue: 2,
-        ..Config::default()
+        ..config
     });
     let mut accepted = vec![];
     let mut refused = 0;
@@ -272,9 +287,10 @@ async fn a_burst_fills_the_queue_and_nothing_accepted_is_lost() {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_job_over_its_time_limit_fails_with_the_reason() {
+    let (config, _dir) = config();
     let app = app(Config {
         job_time_limit: Duration::from_secs(1),
-        ..Config::default()
+        ..config
     });
     let (_, job) = json_call(&app, "POST", "/v1/jobs", Some(long_job())).await;
     let id = job["id"].as_str().unwrap().to_string();
@@ -288,9 +304,12 @@ async fn a_job_over_its_time_limit_fails_with_the_reason() {
     );
 }
 
+/// The store keeps jobs across a shutdown: a job still running after the grace goes back to
+/// the queue (it is not lost, nor cancelled), and the next server on the store runs it.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn shutdown_cancels_what_is_left_with_the_reason() {
-    let (app, state) = app_with_state(Config::default());
+async fn shutdown_hands_running_jobs_back_to_the_queue() {
+    let (config, _dir) = config();
+    let (app, state) = app_with_state(config.clone());
     let (_, job) = json_call(&app, "POST", "/v1/jobs", Some(long_job())).await;
     let id = job["id"].as_str().unwrap().to_string();
     wait_for(
@@ -302,25 +321,127 @@ async fn shutdown_cancels_what_is_left_with_the_reason() {
     .await;
     state.jobs.shutdown(Duration::from_millis(100)).await;
     let (_, v) = json_call(&app, "GET", &format!("/v1/jobs/{id}"), None).await;
-    assert_eq!(v["status"], "cancelled");
-    assert!(
-        v["error"]["detail"]
-            .as_str()
-            .unwrap()
-            .contains("shutting down")
-    );
-    // And new jobs are refused.
+    assert_eq!(v["status"], "queued", "{v}");
+    // New jobs are refused.
     assert_eq!(
         json_call(&app, "POST", "/v1/jobs", Some(long_job()))
             .await
             .0,
         StatusCode::SERVICE_UNAVAILABLE
     );
+    // The next server on the same store runs it.
+    let next = whirl::service::app(config);
+    let v = wait_for(
+        &next,
+        &id,
+        |v| v["status"] == "running",
+        Duration::from_secs(5),
+    )
+    .await;
+    assert_eq!(v["status"], "running", "{v}");
+    let (status, _) = json_call(&next, "DELETE", &format!("/v1/jobs/{id}"), None).await;
+    assert_eq!(status, StatusCode::OK);
+}
+
+/// Retention is enforced in the store: by count, by compressed bytes of results, and by age.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn finished_jobs_are_forgotten_past_their_count_bytes_and_age() {
+    let quick = || json!({"analysis": "campbell", "input": example("jeffcott-nvd.campbell.json")});
+    async fn run(app: &Router, job: Value) -> String {
+        let (status, v) = json_call(app, "POST", "/v1/jobs", Some(job)).await;
+        assert_eq!(status, StatusCode::ACCEPTED, "{v}");
+        let id = v["id"].as_str().unwrap().to_string();
+        let v = wait_for(app, &id, finished, Duration::from_secs(20)).await;
+        assert_eq!(v["status"], "succeeded", "{v}");
+        id
+    }
+    let kept = |app: Router, id: String| async move {
+        json_call(&app, "GET", &format!("/v1/jobs/{id}"), None)
+            .await
+            .0
+            == StatusCode::OK
+    };
+    // Each result is 2521 bytes gzipped: 6000 bytes keep two, as does a count of two.
+    for limits in [
+        Config {
+            max_finished_jobs: 2,
+            ..Config::default()
+        },
+        Config {
+            job_result_bytes: 6000,
+            ..Config::default()
+        },
+    ] {
+        let (config, _dir) = config();
+        let app = app(Config {
+            data_dir: config.data_dir,
+            ..limits
+        });
+        let mut ids = vec![];
+        for _ in 0..3 {
+            ids.push(run(&app, quick()).await);
+        }
+        // Retention runs right after a job finishes: give it a moment to have run.
+        let t0 = Instant::now();
+        let held = loop {
+            let mut held = vec![];
+            for id in &ids {
+                held.push(kept(app.clone(), id.clone()).await);
+            }
+            if held == [false, true, true] || t0.elapsed() > Duration::from_secs(3) {
+                break held;
+            }
+            tokio::time::sleep(Duration::from_millis(20)).await;
+        };
+        assert_eq!(held, [false, true, true], "the oldest is forgotten");
+    }
+    let (config, _dir) = config();
+    let app = app(Config {
+        job_retention: Duration::from_secs(1),
+        ..config
+    });
+    let id = run(&app, quick()).await;
+    assert!(kept(app.clone(), id.clone()).await);
+    tokio::time::sleep(Duration::from_millis(1100)).await;
+    assert!(
+        !kept(app.clone(), id).await,
+        "forgotten after its retention"
+    );
+}
+
+/// Without its store the service still serves analyses, but it is not ready, and the job
+/// endpoints answer 503 with `Retry-After` (not 500, not a hang).
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn an_unreachable_store_fails_readiness_and_jobs_with_503() {
+    let app = app(Config {
+        // Nothing listens on port 1.
+        database_url: Some("postgres://whirl@127.0.0.1:1/whirl".into()),
+        ..Config::default()
+    });
+    let (status, v) = json_call(&app, "GET", "/readyz", None).await;
+    assert_eq!(status, StatusCode::SERVICE_UNAVAILABLE, "{v}");
+    assert_eq!(v["status"], "store unreachable");
+    let input = example("jeffcott-nvd.campbell.json");
+    let job = json!({"analysis": "campbell", "input": input});
+    let (status, headers, _) = call(&app, "POST", "/v1/jobs", Some(job), None).await;
+    assert_eq!(status, StatusCode::SERVICE_UNAVAILABLE);
+    assert!(headers.contains_key(header::RETRY_AFTER));
+    let (status, _) = json_call(&app, "GET", "/v1/jobs/0000", None).await;
+    assert_eq!(status, StatusCode::SERVICE_UNAVAILABLE);
+    let (status, _) = json_call(&app, "POST", "/v1/campbell", Some(input)).await;
+    assert_eq!(status, StatusCode::OK, "analyses do not need the store");
+    let (_, _, text) = call(&app, "GET", "/metrics", None, None).await;
+    assert!(
+        String::from_utf8(text)
+            .unwrap()
+            .contains("whirl_store_up 0")
+    );
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn plots_and_tables_by_accept() {
-    let app = app(Config::default());
+    let (config, _dir) = config();
+    let app = app(config);
     let body = example("example1-equivalent.campbell.json");
     let (s, h, svg) = call(
         &app,
@@ -419,7 +540,8 @@ async fn plots_and_tables_by_accept() {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn metrics_and_request_ids() {
-    let app = app(Config::default());
+    let (config, _dir) = config();
+    let app = app(config);
     let (_, h, _) = call(
         &app,
         "POST",

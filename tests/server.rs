@@ -2,7 +2,6 @@
 //! reading, walk away from an analysis, or outlast a shutdown. A real server on loopback,
 //! short timeouts, every wait bounded.
 
-use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use serde_json::{Value, json};
@@ -471,69 +470,4 @@ async fn error_lists_are_capped_with_a_count_of_the_rest() {
     let paths: std::collections::HashSet<&str> =
         errors.iter().map(|e| e["path"].as_str().unwrap()).collect();
     assert_eq!(paths.len(), 100);
-}
-
-#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn finished_results_are_bounded_by_bytes() {
-    let srv = start(Config {
-        job_result_bytes: 1 << 20,
-        ..Config::default()
-    })
-    .await;
-    // Each result: 10,000 samples of a decaying whirl at two nodes, about 0.5 MB gzipped.
-    let mut input = example("example1-shock-nvd.time-response.json");
-    input["duration"] = json!(0.1);
-    input["output_interval"] = json!(1e-5);
-    input["nodes"] = json!([1, 2]);
-    let mut ids = vec![];
-    for _ in 0..6 {
-        let (status, text) = request(
-            srv.addr,
-            "POST",
-            "/v1/jobs",
-            Some(&json!({"analysis": "time-response", "input": input})),
-        )
-        .await;
-        assert_eq!(status, 202, "{text}");
-        let body = &text[text.find("\r\n\r\n").unwrap() + 4..];
-        let v: Value = serde_json::from_str(body).unwrap();
-        ids.push(v["id"].as_str().unwrap().to_string());
-        // One at a time, so the order of finishing is the order of submitting.
-        let t0 = Instant::now();
-        loop {
-            let (_, t) = request(
-                srv.addr,
-                "GET",
-                &format!("/v1/jobs/{}", ids.last().unwrap()),
-                None,
-            )
-            .await;
-            if t.contains("\"succeeded\"") {
-                break;
-            }
-            assert!(!t.contains("\"failed\""), "{t}");
-            assert!(t0.elapsed() < Duration::from_secs(30), "{t}");
-            tokio::time::sleep(Duration::from_millis(20)).await;
-        }
-        assert!(srv.state.jobs.stored_bytes() <= 1 << 20);
-    }
-    // The newest is kept, the oldest forgotten.
-    assert_eq!(
-        request(
-            srv.addr,
-            "GET",
-            &format!("/v1/jobs/{}/result", ids[5]),
-            None
-        )
-        .await
-        .0,
-        200
-    );
-    assert_eq!(
-        request(srv.addr, "GET", &format!("/v1/jobs/{}", ids[0]), None)
-            .await
-            .0,
-        404
-    );
-    let _ = Arc::new(());
 }

@@ -119,7 +119,9 @@ impl PoleSet {
 
 /// Poles of `model` at spin speed `speed`.
 pub fn poles_at(model: &DampedModel, speed: f64) -> Result<PoleSet, LinalgError> {
-    let (mut rotor, mut internal): (Vec<(Pole, f64)>, Vec<(Pole, f64)>) = (vec![], vec![]);
+    // Each pole with the weight of its rotating branches on `r` (doubled internal poles).
+    type Weighted = Vec<(Pole, f64)>;
+    let (mut rotor, mut internal): (Weighted, Weighted) = (vec![], vec![]);
     let n = model.dofs();
     let doubled = model.layout == Layout::Doubled;
     match &model.kind {

@@ -17,7 +17,7 @@
 use super::Bases;
 use super::state::{Branches, SecondOrder, StateModel};
 use crate::fem::modal::ModalBasis;
-use crate::linalg::{self, CMat, LinalgError, RMat};
+use crate::linalg::{self, CMat, LinalgError, RMat, c64};
 use crate::model::damping::NonviscousSpec;
 use crate::system::{Layout, Realized, RotorSystem};
 
@@ -171,57 +171,18 @@ pub fn branches(
             (&xy.omega, mass * &xy.phi, loss)
         }
     };
-    let mut out: Vec<Branches> = realized.iter().map(|_| Branches::none(n_layout)).collect();
-    let mut columns: Vec<Vec<crate::linalg::c64>> = vec![];
-    let zero = crate::linalg::c64::new(0.0, 0.0);
-    let mut add = |set: &BranchSet,
-                   w: f64,
-                   loss: &[f64],
-                   mode: usize,
-                   spin: f64,
-                   col: Vec<crate::linalg::c64>,
-                   out: &mut Vec<Branches>| {
-        for (j, d) in set.rates(w).into_iter().enumerate() {
-            for (b, l) in out.iter_mut().zip(loss) {
-                let k = l * set.gamma[j];
-                b.stiffness.push(k);
-                b.main_stiffness.push(set.nu[j] * k);
-                b.rate.push(d);
-                b.spin.push(spin);
-                b.mode.push(mode);
-                b.index.push(j);
-            }
-            columns.push(col.clone());
-        }
+    let mut b = Builder {
+        out: realized.iter().map(|_| Branches::none(n_layout)).collect(),
+        columns: vec![],
     };
-    let nonrotating = |i: usize,
-                       out: &mut Vec<Branches>,
-                       add: &mut dyn FnMut(
-        &BranchSet,
-        f64,
-        &[f64],
-        usize,
-        f64,
-        Vec<crate::linalg::c64>,
-        &mut Vec<Branches>,
-    )| {
+    let nonrotating = |i: usize, b: &mut Builder| {
         let loss: Vec<f64> = loss_n.iter().map(|l| l[i].max(0.0)).collect();
         if loss.iter().any(|&l| l > 0.0) {
             let col = (0..n_layout).map(|r| coupling_n[(r, i)]).collect();
-            add(&spec.nonrotating, omega_n[i], &loss, i, 0.0, col, out);
+            b.add(&spec.nonrotating, omega_n[i], &loss, i, 0.0, col);
         }
     };
-    let rotating = |i: usize,
-                    out: &mut Vec<Branches>,
-                    add: &mut dyn FnMut(
-        &BranchSet,
-        f64,
-        &[f64],
-        usize,
-        f64,
-        Vec<crate::linalg::c64>,
-        &mut Vec<Branches>,
-    )| {
+    let rotating = |i: usize, b: &mut Builder| {
         let l = loss_r[(i, i)];
         if l <= 0.0 {
             return;
@@ -235,28 +196,61 @@ pub fn branches(
                     if r >= offset && r < offset + n {
                         axis_coupling[(r - offset, i)]
                     } else {
-                        zero
+                        c64::new(0.0, 0.0)
                     }
                 })
                 .collect();
-            add(&spec.rotating, axis.omega[i], &loss, i, spin, col, out);
+            b.add(&spec.rotating, axis.omega[i], &loss, i, spin, col);
         }
     };
     if doubled {
-        (0..omega_n.len()).for_each(|i| nonrotating(i, &mut out, &mut add));
-        (0..axis.omega.len()).for_each(|i| rotating(i, &mut out, &mut add));
+        (0..omega_n.len()).for_each(|i| nonrotating(i, &mut b));
+        (0..axis.omega.len()).for_each(|i| rotating(i, &mut b));
     } else {
         // One damper pair per mode, in the order of the modes.
         for i in 0..axis.omega.len() {
-            nonrotating(i, &mut out, &mut add);
-            rotating(i, &mut out, &mut add);
+            nonrotating(i, &mut b);
+            rotating(i, &mut b);
         }
     }
-    let u = CMat::from_fn(n_layout, columns.len(), |r, c| columns[c][r]);
-    for b in &mut out {
-        b.coupling = u.clone();
+    let u = CMat::from_fn(n_layout, b.columns.len(), |r, c| b.columns[c][r]);
+    for br in &mut b.out {
+        br.coupling = u.clone();
     }
-    out
+    b.out
+}
+
+/// The branches of every realization, built damper by damper.
+struct Builder {
+    out: Vec<Branches>,
+    columns: Vec<Vec<c64>>,
+}
+
+impl Builder {
+    /// A damper of `set` tuned at `w0` with loss stiffness `loss` (one per realization) on the
+    /// coordinate `col^H q`.
+    fn add(
+        &mut self,
+        set: &BranchSet,
+        w0: f64,
+        loss: &[f64],
+        mode: usize,
+        spin: f64,
+        col: Vec<c64>,
+    ) {
+        for (j, d) in set.rates(w0).into_iter().enumerate() {
+            for (b, l) in self.out.iter_mut().zip(loss) {
+                let k = l * set.gamma[j];
+                b.stiffness.push(k);
+                b.main_stiffness.push(set.nu[j] * k);
+                b.rate.push(d);
+                b.spin.push(spin);
+                b.mode.push(mode);
+                b.index.push(j);
+            }
+            self.columns.push(col.clone());
+        }
+    }
 }
 
 /// `(phi_i^H K'' phi_i)` of each mode.
@@ -309,7 +303,7 @@ pub fn modal_form(
         }
     }
     out.coupling = CMat::from_fn(k, columns.len(), |r, c| {
-        crate::linalg::c64::new(identity[(r, columns[c])], 0.0)
+        c64::new(identity[(r, columns[c])], 0.0)
     });
     StateModel::new(&so, &out)
 }

@@ -39,6 +39,12 @@ pub struct Config {
     pub write_timeout: Duration,
     pub max_connections: usize,
     pub log_json: bool,
+    /// Directory of the embedded job store (SQLite), when there is no `database_url`.
+    pub data_dir: std::path::PathBuf,
+    /// A PostgreSQL URL: the job store shared by replicas.
+    pub database_url: Option<String>,
+    /// How long a running job's lease lasts without a heartbeat.
+    pub job_lease: Duration,
 }
 
 /// One setting: its variable, its default (as text; `None`: computed) and what it means.
@@ -68,7 +74,7 @@ pub const SETTINGS: &[Setting] = &[
     Setting {
         var: "WHIRL_QUEUE",
         default: "64",
-        meaning: "analyses waiting for a worker; beyond this, 503 with Retry-After",
+        meaning: "jobs waiting in the shared queue (all replicas), and synchronous analyses waiting for a worker of this server; beyond this, 503 with Retry-After",
     },
     Setting {
         var: "WHIRL_MAX_BODY_BYTES",
@@ -136,9 +142,24 @@ pub const SETTINGS: &[Setting] = &[
         meaning: "compressed bytes of finished results kept (oldest forgotten first)",
     },
     Setting {
+        var: "WHIRL_DATA_DIR",
+        default: "./data",
+        meaning: "directory of the embedded job store (SQLite file whirl.sqlite), used when WHIRL_DATABASE_URL is not set",
+    },
+    Setting {
+        var: "WHIRL_DATABASE_URL",
+        default: "none",
+        meaning: "postgres://user:password@host:port/database: the job store shared by several replicas (instead of WHIRL_DATA_DIR)",
+    },
+    Setting {
+        var: "WHIRL_JOB_LEASE",
+        default: "15",
+        meaning: "seconds a running job stays claimed without a heartbeat (sent every 0.25 s); after that it is re-queued once, then failed",
+    },
+    Setting {
         var: "WHIRL_SHUTDOWN_GRACE",
         default: "30",
-        meaning: "seconds running work gets on SIGTERM; the process ends a few seconds later whatever the clients do",
+        meaning: "seconds running work gets on SIGTERM; jobs still running then go back to the queue; the process ends a few seconds later whatever the clients do",
     },
     Setting {
         var: "WHIRL_HEADER_TIMEOUT",
@@ -199,6 +220,9 @@ impl Default for Config {
             write_timeout: Duration::from_secs(30),
             max_connections: 1024,
             log_json: false,
+            data_dir: "./data".into(),
+            database_url: None,
+            job_lease: Duration::from_secs(15),
         }
     }
 }
@@ -229,6 +253,14 @@ impl Config {
     /// Compute threads one analysis uses.
     pub fn threads(&self) -> usize {
         std::thread::available_parallelism().map_or(2, |n| n.get())
+    }
+
+    /// Where the jobs are kept.
+    pub fn store_target(&self) -> super::store::Target {
+        match &self.database_url {
+            Some(url) => super::store::Target::Postgres(url.clone()),
+            None => super::store::Target::Sqlite(self.data_dir.clone()),
+        }
     }
 
     /// The limits requests are parsed with.
@@ -314,6 +346,18 @@ impl Config {
                 return Err(format!("WHIRL_LOG_FORMAT={other:?}: expected text or json"));
             }
         };
+        let database_url = match get("WHIRL_DATABASE_URL").filter(|v| !v.trim().is_empty()) {
+            None => None,
+            Some(url) if url.starts_with("postgres://") || url.starts_with("postgresql://") => {
+                Some(url)
+            }
+            Some(_) => {
+                return Err(
+                    "WHIRL_DATABASE_URL: expected postgres://user:password@host:port/database"
+                        .into(),
+                );
+            }
+        };
         Ok(Config {
             host: get("HOST").unwrap_or(d.host),
             port: num(&get, "PORT", d.port, 0)?,
@@ -343,6 +387,9 @@ impl Config {
             write_timeout: seconds(&get, "WHIRL_WRITE_TIMEOUT", d.write_timeout, 0.1)?,
             max_connections: num(&get, "WHIRL_MAX_CONNECTIONS", d.max_connections, 1)?,
             log_json,
+            data_dir: get("WHIRL_DATA_DIR").map_or(d.data_dir, Into::into),
+            database_url,
+            job_lease: seconds(&get, "WHIRL_JOB_LEASE", d.job_lease, 1.0)?,
         })
     }
 }
@@ -367,6 +414,14 @@ mod tests {
         assert!(
             Config::from_lookup(|k| (k == "WHIRL_MEMORY_BUDGET").then(|| "lots".into())).is_err()
         );
+        assert!(
+            Config::from_lookup(|k| (k == "WHIRL_DATABASE_URL").then(|| "mysql://x".into()))
+                .is_err()
+        );
+        let url = "postgres://postgres@127.0.0.1/test";
+        let c = Config::from_lookup(|k| (k == "WHIRL_DATABASE_URL").then(|| url.into())).unwrap();
+        assert_eq!(c.database_url.as_deref(), Some(url));
+        assert!(Config::from_lookup(|k| (k == "WHIRL_JOB_LEASE").then(|| "0.1".into())).is_err());
     }
 
     #[test]
@@ -379,9 +434,12 @@ mod tests {
             "WHIRL_HEADER_TIMEOUT",
             "WHIRL_MAX_CONNECTIONS",
             "WHIRL_JOB_RESULT_BYTES",
+            "WHIRL_DATA_DIR",
+            "WHIRL_DATABASE_URL",
+            "WHIRL_JOB_LEASE",
         ] {
             assert_eq!(vars.iter().filter(|x| **x == v).count(), 1, "{v}");
         }
-        assert_eq!(vars.len(), 24);
+        assert_eq!(vars.len(), 27);
     }
 }

@@ -40,6 +40,8 @@ pub enum ApiError {
     RequestTimeout(std::time::Duration),
     /// 503: a synchronous analysis ran past its time limit (it was stopped).
     TimeLimit(std::time::Duration),
+    /// 503 with `Retry-After`: the job store cannot be reached.
+    Unavailable(String),
 }
 
 impl From<Invalid> for ApiError {
@@ -76,7 +78,9 @@ impl ApiError {
             ApiError::Malformed(_) => StatusCode::BAD_REQUEST,
             ApiError::Invalid(_) | ApiError::Unsolvable(_) => StatusCode::UNPROCESSABLE_ENTITY,
             ApiError::TooLarge(_) => StatusCode::PAYLOAD_TOO_LARGE,
-            ApiError::Busy | ApiError::TimeLimit(_) => StatusCode::SERVICE_UNAVAILABLE,
+            ApiError::Busy | ApiError::TimeLimit(_) | ApiError::Unavailable(_) => {
+                StatusCode::SERVICE_UNAVAILABLE
+            }
             ApiError::UnsupportedMediaType(_) => StatusCode::UNSUPPORTED_MEDIA_TYPE,
             ApiError::MethodNotAllowed(_) => StatusCode::METHOD_NOT_ALLOWED,
             ApiError::RequestTimeout(_) => StatusCode::REQUEST_TIMEOUT,
@@ -130,6 +134,12 @@ impl ApiError {
                 format!(
                     "all workers are busy and the queue is full; retry in {RETRY_AFTER_SECONDS} s"
                 ),
+                vec![],
+            ),
+            ApiError::Unavailable(d) => (
+                "store-unavailable",
+                "Job store unavailable",
+                format!("{d}; retry in {RETRY_AFTER_SECONDS} s"),
                 vec![],
             ),
             ApiError::NotFound(d) => ("not-found", "Not found", d.clone(), vec![]),
@@ -199,7 +209,13 @@ impl IntoResponse for ApiError {
             header::CONTENT_TYPE,
             HeaderValue::from_static("application/problem+json"),
         );
-        if matches!(self, ApiError::Busy | ApiError::TimeLimit(_)) {
+        if let ApiError::Unavailable(d) = &self {
+            tracing::error!(detail = %d, "job store unavailable");
+        }
+        if matches!(
+            self,
+            ApiError::Busy | ApiError::TimeLimit(_) | ApiError::Unavailable(_)
+        ) {
             h.insert(header::RETRY_AFTER, HeaderValue::from(RETRY_AFTER_SECONDS));
         }
         if let ApiError::MethodNotAllowed(allow) = &self

@@ -1,36 +1,40 @@
-//! Asynchronous jobs: `POST /v1/jobs` runs an analysis later; its status, progress, result and
-//! cancellation live here.
+//! Asynchronous jobs as the API sees them: `POST /v1/jobs` puts an analysis in the shared
+//! queue; its status, progress, result and cancellation are read from the job store, so any
+//! replica answers for any job, and a restart forgets nothing.
 //!
-//! A job is validated and admitted to the worker pool when it is submitted (422 and 503 come
-//! at once, never later), so an accepted job always runs. Cancelling takes effect at once: the
-//! job is recorded as cancelled and its analysis is told to stop, which it does at its next
-//! check (between speeds, samples and time steps); its worker and memory are released then.
-//! A job that exceeds the time limit is stopped the same way and fails with the reason.
-//! Results are kept as gzipped JSON, within a total of compressed bytes, a count and an age;
-//! past those the oldest finished jobs are forgotten (404).
+//! A job is validated when it is submitted (422 at once, never later) and admitted against the
+//! shared queue (503 with `Retry-After` when `queue` jobs already wait, over all replicas). The
+//! replica that received it then looks for work at once, so a job submitted to an idle replica
+//! starts without waiting for a poll ([`runner`](super::runner) claims and runs jobs).
+//! Cancelling takes effect at once: the store records the job as cancelled, and the replica
+//! running it stops its analysis at its next check (at once when that is this replica, within
+//! a heartbeat otherwise). Results are kept gzipped in the store, within a total of compressed
+//! bytes, a count and an age; past those the oldest finished jobs are forgotten (404).
 
-use std::collections::HashMap;
 use std::io::{Read, Write};
-use std::sync::{Arc, Mutex};
-use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
+use std::sync::Arc;
+use std::time::{Duration, UNIX_EPOCH};
 
-use tokio::sync::Notify;
+use serde_json::Value;
 
-use super::AppState;
 use super::error::ApiError;
-use super::task::{Format, Output, Rendered, execute, render};
-use crate::analysis::control::Control;
-use crate::model::Task;
-use crate::model::api::{JobInfo, JobStatus, Problem};
+use super::json::from_value;
+use super::pool::WorkerPool;
+use super::runner::Runner;
+use super::store::{JobRow, NewJob, Stats, Store, StoreError, status_text};
+use super::task::Output;
+use crate::model::api::{AnalysisName, JobInfo, JobStatus, Problem};
+use crate::model::task::JobInput;
+use crate::model::{Invalid, Limits, Task};
 
-/// A finished job's result: its JSON, gzipped.
+/// A finished job's result: its JSON, gzipped (as the store keeps it).
 pub struct Stored {
     pub analysis: &'static str,
     pub gzip: Vec<u8>,
 }
 
 impl Stored {
-    fn new(analysis: &'static str, out: &Output) -> Result<Self, ApiError> {
+    pub fn new(analysis: &'static str, out: &Output) -> Result<Self, ApiError> {
         let json = serde_json::to_vec(out).map_err(|e| ApiError::Internal(e.to_string()))?;
         let mut enc = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::fast());
         enc.write_all(&json)
@@ -41,81 +45,55 @@ impl Stored {
         Ok(Stored { analysis, gzip })
     }
 
-    fn json(&self) -> Result<Vec<u8>, ApiError> {
-        let mut out = vec![];
-        flate2::read::GzDecoder::new(&self.gzip[..])
-            .read_to_end(&mut out)
+    /// The output of `analysis` back from its gzipped JSON.
+    pub fn output(analysis: &str, gzip: &[u8]) -> Result<Output, ApiError> {
+        let mut json = vec![];
+        flate2::read::GzDecoder::new(gzip)
+            .read_to_end(&mut json)
             .map_err(|e| ApiError::Internal(format!("stored result: {e}")))?;
-        Ok(out)
-    }
-
-    /// The result in the first acceptable format; the stored gzip itself when the client takes
-    /// gzipped JSON (nothing is rebuilt).
-    pub fn render(&self, formats: &[Format], gzip_ok: bool) -> Result<(Rendered, bool), ApiError> {
-        if formats.first() == Some(&Format::Json) {
-            if gzip_ok {
-                return Ok((
-                    Rendered {
-                        media: Format::Json.media(),
-                        body: self.gzip.clone(),
-                    },
-                    true,
-                ));
-            }
-            return Ok((
-                Rendered {
-                    media: Format::Json.media(),
-                    body: self.json()?,
-                },
-                false,
-            ));
-        }
-        let out = Output::from_json(self.analysis, &self.json()?)?;
-        Ok((render(&out, formats)?, false))
+        Output::from_json(analysis, &json)
     }
 }
 
-struct Job {
-    analysis: &'static str,
-    status: JobStatus,
-    control: Arc<Control>,
-    /// Wakes the job's runner when it is stopped from outside.
-    stop: Arc<Notify>,
-    created: SystemTime,
-    started: Option<SystemTime>,
-    finished: Option<(SystemTime, Instant)>,
-    error: Option<Problem>,
-    result: Option<Arc<Stored>>,
+impl From<StoreError> for ApiError {
+    fn from(e: StoreError) -> Self {
+        ApiError::Unavailable(e.0)
+    }
 }
 
-/// Settings of the job store.
-#[derive(Debug, Clone, Copy)]
-pub struct JobLimits {
-    /// How long a finished job is kept.
-    pub retention: Duration,
-    /// Most finished jobs kept (oldest forgotten first).
-    pub max_finished: usize,
-    /// Longest a job may run.
-    pub time_limit: Duration,
-    /// Compressed bytes of results kept.
-    pub max_result_bytes: u64,
-    /// Largest answer.
-    pub max_response_bytes: u64,
+/// A job's input, typed by its analysis.
+pub fn job_input(analysis: AnalysisName, input: Value) -> Result<JobInput, ApiError> {
+    if !input.is_object() {
+        return Err(ApiError::Invalid(Invalid::one(
+            "(body)",
+            "must be a JSON object: the body of the analysis's endpoint",
+        )));
+    }
+    Ok(match analysis {
+        AnalysisName::Modal => JobInput::Modal(from_value(input)?),
+        AnalysisName::Campbell => JobInput::Campbell(from_value(input)?),
+        AnalysisName::Stability => JobInput::Stability(from_value(input)?),
+        AnalysisName::Damping => JobInput::Damping(from_value(input)?),
+        AnalysisName::TimeResponse => JobInput::Time(from_value(input)?),
+        AnalysisName::UnbalanceResponse => JobInput::Unbalance(from_value(input)?),
+    })
 }
 
-struct Table {
-    jobs: HashMap<String, Job>,
-    /// Compressed bytes of the results held.
-    stored: u64,
+/// A stored request parsed again into a task, with this replica's limits.
+pub fn parse_stored(analysis: &str, input: &str, limits: &Limits) -> Result<Task, ApiError> {
+    let bad = |e: serde_json::Error| ApiError::Internal(format!("stored job: {e}"));
+    let name: AnalysisName =
+        serde_json::from_value(Value::String(analysis.to_string())).map_err(bad)?;
+    let value: Value = serde_json::from_str(input).map_err(bad)?;
+    Ok(job_input(name, value)?.parse(limits)?)
 }
 
-pub struct Jobs {
-    table: Mutex<Table>,
-    limits: JobLimits,
-    accepting: std::sync::atomic::AtomicBool,
+pub fn rfc3339_ms(ms: i64) -> String {
+    let t = UNIX_EPOCH + Duration::from_millis(ms.max(0) as u64);
+    rfc3339(t)
 }
 
-fn rfc3339(t: SystemTime) -> String {
+fn rfc3339(t: std::time::SystemTime) -> String {
     let d = t.duration_since(UNIX_EPOCH).unwrap_or_default();
     let secs = d.as_secs() as i64;
     let (days, rem) = (secs.div_euclid(86_400), secs.rem_euclid(86_400));
@@ -138,228 +116,25 @@ fn rfc3339(t: SystemTime) -> String {
     )
 }
 
-impl Jobs {
-    pub fn new(limits: JobLimits) -> Self {
-        Jobs {
-            table: Mutex::new(Table {
-                jobs: HashMap::new(),
-                stored: 0,
-            }),
-            limits,
-            accepting: std::sync::atomic::AtomicBool::new(true),
-        }
-    }
-
-    fn lock(&self) -> std::sync::MutexGuard<'_, Table> {
-        self.table.lock().unwrap_or_else(|e| e.into_inner())
-    }
-
-    /// A UUIDv7: unique across restarts and replicas, and ordered by creation time.
-    fn new_id(&self) -> String {
-        uuid::Uuid::now_v7().to_string()
-    }
-
-    /// Forgets finished jobs past retention, then the oldest beyond the count and beyond the
-    /// bytes of results.
-    fn purge(&self, t: &mut Table) {
-        let now = Instant::now();
-        let retention = self.limits.retention;
-        let mut freed = 0;
-        t.jobs.retain(|_, j| {
-            let keep = j
-                .finished
-                .is_none_or(|(_, at)| now.duration_since(at) < retention);
-            if !keep {
-                freed += j.result.as_ref().map_or(0, |r| r.gzip.len() as u64);
-            }
-            keep
-        });
-        t.stored -= freed;
-        let mut finished: Vec<(Instant, String)> = t
-            .jobs
-            .iter()
-            .filter_map(|(id, j)| j.finished.map(|(_, at)| (at, id.clone())))
-            .collect();
-        finished.sort();
-        let mut count = finished.len();
-        for (_, id) in finished {
-            if count <= self.limits.max_finished && t.stored <= self.limits.max_result_bytes {
-                break;
-            }
-            if let Some(j) = t.jobs.remove(&id) {
-                t.stored -= j.result.as_ref().map_or(0, |r| r.gzip.len() as u64);
-            }
-            count -= 1;
-        }
-    }
-
-    fn info(id: &str, j: &Job) -> JobInfo {
-        JobInfo {
-            id: id.to_string(),
-            analysis: j.analysis.to_string(),
-            status: j.status,
-            progress: match j.status {
-                JobStatus::Succeeded => 1.0,
-                JobStatus::Queued => 0.0,
-                _ => j.control.progress(),
-            },
-            created_at: rfc3339(j.created),
-            started_at: j.started.map(rfc3339),
-            finished_at: j.finished.map(|(t, _)| rfc3339(t)),
-            error: j.error.clone(),
-        }
-    }
-
-    pub fn get(&self, id: &str) -> Result<JobInfo, ApiError> {
-        let mut t = self.lock();
-        self.purge(&mut t);
-        t.jobs
-            .get(id)
-            .map(|j| Self::info(id, j))
-            .ok_or_else(|| not_found(id))
-    }
-
-    /// The result of a succeeded job; 409 otherwise.
-    pub fn result(&self, id: &str) -> Result<Arc<Stored>, ApiError> {
-        let mut t = self.lock();
-        self.purge(&mut t);
-        let j = t.jobs.get(id).ok_or_else(|| not_found(id))?;
-        match (&j.result, j.status) {
-            (Some(o), JobStatus::Succeeded) => Ok(o.clone()),
-            (_, status) => Err(ApiError::Conflict(format!(
-                "job {id} is {}: its result exists once it has succeeded{}",
-                status_name(status),
-                j.error
-                    .as_ref()
-                    .map(|e| format!(" ({})", e.detail))
-                    .unwrap_or_default()
-            ))),
-        }
-    }
-
-    /// Stops a job at once: it is recorded with `status` and `reason`, its analysis told to
-    /// stop, its runner woken. 409 if it has finished.
-    fn stop(&self, id: &str, status: JobStatus, reason: &str) -> Result<JobInfo, ApiError> {
-        let mut t = self.lock();
-        let j = t.jobs.get_mut(id).ok_or_else(|| not_found(id))?;
-        match j.status {
-            JobStatus::Queued | JobStatus::Running => {
-                j.control.cancel();
-                j.stop.notify_one();
-                j.status = status;
-                j.finished = Some((SystemTime::now(), Instant::now()));
-                j.error = Some(stopped(reason));
-                tracing::info!(job = id, analysis = j.analysis, reason, "job stopped");
-                Ok(Self::info(id, j))
-            }
-            s => Err(ApiError::Conflict(format!(
-                "job {id} has already finished ({})",
-                status_name(s)
-            ))),
-        }
-    }
-
-    /// Cancels a job (a client's request).
-    pub fn cancel(&self, id: &str, reason: &str) -> Result<JobInfo, ApiError> {
-        self.stop(id, JobStatus::Cancelled, reason)
-    }
-
-    /// Compressed bytes of the results held.
-    pub fn stored_bytes(&self) -> u64 {
-        self.lock().stored
-    }
-
-    /// Counts by status, for the metrics.
-    pub fn counts(&self) -> [(JobStatus, usize); 5] {
-        let t = self.lock();
-        let mut c = [
-            (JobStatus::Queued, 0),
-            (JobStatus::Running, 0),
-            (JobStatus::Succeeded, 0),
-            (JobStatus::Failed, 0),
-            (JobStatus::Cancelled, 0),
-        ];
-        for j in t.jobs.values() {
-            if let Some(e) = c.iter_mut().find(|e| e.0 == j.status) {
-                e.1 += 1;
-            }
-        }
-        c
-    }
-
-    /// Stops taking jobs; lets running ones finish within `grace`, then stops what is left
-    /// (queued and running) as cancelled by the shutdown, each logged.
-    pub async fn shutdown(&self, grace: Duration) {
-        self.accepting
-            .store(false, std::sync::atomic::Ordering::SeqCst);
-        let deadline = Instant::now() + grace;
-        let busy = |jobs: &Jobs| -> Vec<String> {
-            jobs.lock()
-                .jobs
-                .iter()
-                .filter(|(_, j)| matches!(j.status, JobStatus::Queued | JobStatus::Running))
-                .map(|(id, _)| id.clone())
-                .collect()
-        };
-        while !busy(self).is_empty() && Instant::now() < deadline {
-            tokio::time::sleep(Duration::from_millis(50)).await;
-        }
-        for id in busy(self) {
-            if self
-                .stop(
-                    &id,
-                    JobStatus::Cancelled,
-                    "cancelled: the server is shutting down",
-                )
-                .is_ok()
-            {
-                tracing::warn!(job = %id, "job cancelled by shutdown");
-            }
-        }
-    }
-
-    /// Records how a job's analysis ended, unless it was stopped before.
-    fn finish(&self, id: &str, result: Result<Stored, ApiError>) {
-        let mut t = self.lock();
-        let Some(j) = t.jobs.get_mut(id) else { return };
-        if !matches!(j.status, JobStatus::Queued | JobStatus::Running) {
-            return; // stopped from outside: already recorded
-        }
-        j.finished = Some((SystemTime::now(), Instant::now()));
-        let mut added = 0;
-        match result {
-            Ok(stored) if stored.gzip.len() as u64 > self.limits.max_result_bytes => {
-                j.status = JobStatus::Failed;
-                j.error = Some(
-                    ApiError::Unsolvable(format!(
-                        "the result is {} MB compressed, more than the {} MB kept for all jobs \
-                         (WHIRL_JOB_RESULT_BYTES)",
-                        stored.gzip.len().div_ceil(1 << 20),
-                        self.limits.max_result_bytes >> 20
-                    ))
-                    .problem(),
-                );
-            }
-            Ok(stored) => {
-                j.status = JobStatus::Succeeded;
-                added = stored.gzip.len() as u64;
-                j.result = Some(Arc::new(stored));
-            }
-            Err(ApiError::Cancelled) => {
-                j.status = JobStatus::Cancelled;
-                j.error = Some(stopped("cancelled"));
-            }
-            Err(e) => {
-                j.status = JobStatus::Failed;
-                j.error = Some(e.problem());
-            }
-        }
-        t.stored += added;
-        self.purge(&mut t);
+/// A job's row as the API shows it.
+pub fn info(r: &JobRow) -> JobInfo {
+    JobInfo {
+        id: r.id.clone(),
+        analysis: r.analysis.clone(),
+        status: r.status,
+        progress: match r.status {
+            JobStatus::Succeeded => 1.0,
+            JobStatus::Queued => 0.0,
+            _ => r.progress.clamp(0.0, 1.0),
+        },
+        created_at: rfc3339_ms(r.created_ms),
+        started_at: r.started_ms.map(rfc3339_ms),
+        finished_at: r.finished_ms.map(rfc3339_ms),
+        error: r.error.clone(),
     }
 }
 
-fn stopped(reason: &str) -> Problem {
+pub fn stopped(reason: &str) -> Problem {
     ApiError::Stopped(reason.to_string()).problem()
 }
 
@@ -368,83 +143,119 @@ fn not_found(id: &str) -> ApiError {
 }
 
 pub fn status_name(s: JobStatus) -> &'static str {
-    match s {
-        JobStatus::Queued => "queued",
-        JobStatus::Running => "running",
-        JobStatus::Succeeded => "succeeded",
-        JobStatus::Failed => "failed",
-        JobStatus::Cancelled => "cancelled",
-    }
+    status_text(s)
 }
 
-/// Admits and starts a job; returns its status (queued).
-pub fn submit(st: &AppState, task: Task) -> Result<JobInfo, ApiError> {
-    let jobs = st.jobs.clone();
-    if !jobs.accepting.load(std::sync::atomic::Ordering::SeqCst) {
-        return Err(ApiError::Busy);
-    }
-    let admission = st.pool.admit(&task.cost, task.size_field())?;
-    let id = jobs.new_id();
-    let analysis = task.name();
-    let control = Arc::new(Control::default());
-    let stop = Arc::new(Notify::new());
-    let info = {
-        let mut t = jobs.lock();
-        jobs.purge(&mut t);
-        let job = Job {
-            analysis,
-            status: JobStatus::Queued,
-            control: control.clone(),
-            stop: stop.clone(),
-            created: SystemTime::now(),
-            started: None,
-            finished: None,
-            error: None,
-            result: None,
-        };
-        let info = Jobs::info(&id, &job);
-        t.jobs.insert(id.clone(), job);
-        info
-    };
-    let pool = st.pool.clone();
-    let metrics = st.metrics.clone();
-    let limit = jobs.limits.time_limit;
-    let max_bytes = jobs.limits.max_response_bytes;
-    tokio::spawn(async move {
-        let start_id = id.clone();
-        let start_jobs = jobs.clone();
-        let started = move || {
-            let mut t = start_jobs.lock();
-            if let Some(j) = t.jobs.get_mut(&start_id)
-                && j.status == JobStatus::Queued
-            {
-                j.status = JobStatus::Running;
-                j.started = Some(SystemTime::now());
-            }
-        };
-        let t0 = Instant::now();
-        let run_control = control.clone();
-        let work = pool.run(admission, started, move || {
-            // Stopped while it waited: do nothing.
-            run_control.check().map_err(|_| ApiError::Cancelled)?;
-            let out = execute(&task, &run_control, max_bytes)?;
-            Stored::new(analysis, &out)
-        });
-        tokio::select! {
-            r = work => {
-                metrics.observe_analysis(analysis, t0.elapsed());
-                jobs.finish(&id, r.and_then(|r| r));
-            }
-            _ = tokio::time::sleep(limit) => {
-                let reason = format!(
-                    "exceeded the time limit of {} s (WHIRL_JOB_TIME_LIMIT)",
-                    limit.as_secs_f64()
-                );
-                let _ = jobs.stop(&id, JobStatus::Failed, &reason);
-            }
-            // Cancelled or shut down: recorded by `stop`; the analysis stops at its next check.
-            _ = stop.notified() => {}
+/// The jobs of the whole service, through the store.
+pub struct Jobs {
+    pub store: Arc<Store>,
+    pub runner: Arc<Runner>,
+    /// Jobs that may wait in the shared queue.
+    queue: usize,
+}
+
+impl Jobs {
+    pub fn new(store: Arc<Store>, runner: Arc<Runner>, queue: usize) -> Self {
+        Jobs {
+            store,
+            runner,
+            queue,
         }
-    });
-    Ok(info)
+    }
+
+    /// Admits a validated job to the shared queue (`input`: its JSON as received); returns its
+    /// status (queued).
+    pub async fn submit(
+        &self,
+        pool: &WorkerPool,
+        input: &Value,
+        task: &Task,
+    ) -> Result<JobInfo, ApiError> {
+        if !self.runner.accepting() {
+            return Err(ApiError::Busy);
+        }
+        let (lane, memory_mib) = pool.needs(&task.cost, task.size_field())?;
+        let id = uuid::Uuid::now_v7().to_string();
+        let input = serde_json::to_string(input).map_err(|e| ApiError::Internal(e.to_string()))?;
+        let job = NewJob {
+            id: &id,
+            analysis: task.name(),
+            input: &input,
+            lane,
+            memory_mib,
+        };
+        let row = self
+            .store
+            .submit(&job, self.queue)
+            .await?
+            .ok_or(ApiError::Busy)?;
+        tracing::info!(job = %id, analysis = task.name(), "job queued");
+        // Start it here if this replica has room (oldest first), in a task of its own: a
+        // client that goes away must not interrupt a claim.
+        let runner = self.runner.clone();
+        let _ = tokio::spawn(async move { runner.claim_pass().await }).await;
+        Ok(info(&row))
+    }
+
+    pub async fn get(&self, id: &str) -> Result<JobInfo, ApiError> {
+        let row = self.store.get(id).await?.ok_or_else(|| not_found(id))?;
+        Ok(info(&row))
+    }
+
+    /// The row of a succeeded job (its result is in the store); 409 otherwise.
+    pub async fn result(&self, id: &str) -> Result<JobRow, ApiError> {
+        let row = self.store.get(id).await?.ok_or_else(|| not_found(id))?;
+        if row.status == JobStatus::Succeeded {
+            return Ok(row);
+        }
+        Err(ApiError::Conflict(format!(
+            "job {id} is {}: its result exists once it has succeeded{}",
+            status_name(row.status),
+            row.error
+                .as_ref()
+                .map(|e| format!(" ({})", e.detail))
+                .unwrap_or_default()
+        )))
+    }
+
+    /// Cancels a job at once: recorded as cancelled with `reason` in the store (every replica
+    /// sees it), its analysis stopped here at once, or by the replica running it within a
+    /// heartbeat. 409 if it has finished.
+    pub async fn cancel(&self, id: &str, reason: &str) -> Result<JobInfo, ApiError> {
+        match self.store.cancel(id, &stopped(reason)).await? {
+            Some(row) => {
+                self.runner.stop_here(id);
+                tracing::info!(job = id, analysis = %row.analysis, reason, "job stopped");
+                Ok(info(&row))
+            }
+            None => match self.store.get(id).await? {
+                Some(row) => Err(ApiError::Conflict(format!(
+                    "job {id} has already finished ({})",
+                    status_name(row.status)
+                ))),
+                None => Err(not_found(id)),
+            },
+        }
+    }
+
+    /// Jobs waiting in the shared queue.
+    pub async fn queued(&self) -> Result<i64, ApiError> {
+        Ok(self.store.queued().await?)
+    }
+
+    /// Whether the shared queue is full.
+    pub fn full(&self, queued: i64) -> bool {
+        queued >= self.queue as i64
+    }
+
+    /// Jobs by status over all replicas, for the metrics.
+    pub async fn stats(&self) -> Result<Stats, StoreError> {
+        self.store.stats().await
+    }
+
+    /// Stops taking and claiming jobs; lets this replica's running jobs finish within `grace`,
+    /// then hands what is left back to the queue, each logged (see [`Runner::shutdown`]).
+    pub async fn shutdown(&self, grace: Duration) {
+        self.runner.shutdown(grace).await;
+    }
 }

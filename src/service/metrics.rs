@@ -1,8 +1,10 @@
 //! Prometheus metrics in text format: requests, jobs by status, queue depth, analysis
-//! durations.
+//! durations, and the job store: the shared queue's depth over all replicas, claim latency,
+//! time jobs wait in the queue, lease expiries and store errors.
 
 use std::collections::BTreeMap;
 use std::sync::Mutex;
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Duration;
 
 use axum::extract::{MatchedPath, Request, State};
@@ -11,9 +13,15 @@ use axum::response::Response;
 
 use super::AppState;
 use super::jobs::status_name;
+use super::store::Stats;
+use crate::model::api::JobStatus;
 
-/// Upper bounds of the duration histogram, s.
+/// Upper bounds of the duration histograms (analyses, queue waits), s.
 const BUCKETS: [f64; 10] = [0.01, 0.05, 0.1, 0.5, 1.0, 5.0, 10.0, 30.0, 60.0, 300.0];
+/// Upper bounds of the claim latency histogram, s.
+const CLAIM_BUCKETS: [f64; 10] = [
+    0.0005, 0.001, 0.0025, 0.005, 0.01, 0.025, 0.05, 0.1, 0.5, 1.0,
+];
 
 #[derive(Default)]
 struct Histogram {
@@ -22,10 +30,46 @@ struct Histogram {
     count: u64,
 }
 
+impl Histogram {
+    fn observe(&mut self, bounds: &[f64; 10], s: f64) {
+        for (i, le) in bounds.iter().enumerate() {
+            if s <= *le {
+                self.counts[i] += 1;
+            }
+        }
+        self.sum += s;
+        self.count += 1;
+    }
+
+    fn render(&self, out: &mut String, name: &str, labels: &str, bounds: &[f64; 10]) {
+        let sep = if labels.is_empty() { "" } else { "," };
+        for (le, c) in bounds.iter().zip(self.counts) {
+            out.push_str(&format!("{name}_bucket{{{labels}{sep}le=\"{le}\"}} {c}\n"));
+        }
+        out.push_str(&format!(
+            "{name}_bucket{{{labels}{sep}le=\"+Inf\"}} {}\n",
+            self.count
+        ));
+        let braces = if labels.is_empty() {
+            String::new()
+        } else {
+            format!("{{{labels}}}")
+        };
+        out.push_str(&format!("{name}_sum{braces} {}\n", self.sum));
+        out.push_str(&format!("{name}_count{braces} {}\n", self.count));
+    }
+}
+
 #[derive(Default)]
 pub struct Metrics {
     requests: Mutex<BTreeMap<(String, String, u16), u64>>,
     analyses: Mutex<BTreeMap<String, Histogram>>,
+    /// Time of the claim statement.
+    claims: Mutex<Histogram>,
+    /// Time claimed jobs waited in the queue.
+    waits: Mutex<Histogram>,
+    lease_expiries: AtomicU64,
+    store_errors: AtomicU64,
 }
 
 impl Metrics {
@@ -37,15 +81,29 @@ impl Metrics {
 
     pub fn observe_analysis(&self, analysis: &str, d: Duration) {
         let mut a = self.analyses.lock().unwrap_or_else(|e| e.into_inner());
-        let h = a.entry(analysis.to_string()).or_default();
-        let s = d.as_secs_f64();
-        for (i, le) in BUCKETS.iter().enumerate() {
-            if s <= *le {
-                h.counts[i] += 1;
-            }
-        }
-        h.sum += s;
-        h.count += 1;
+        a.entry(analysis.to_string())
+            .or_default()
+            .observe(&BUCKETS, d.as_secs_f64());
+    }
+
+    /// A claim took `took`; the job had waited `waited` in the queue.
+    pub fn observe_claim(&self, took: Duration, waited: Duration) {
+        self.claims
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .observe(&CLAIM_BUCKETS, took.as_secs_f64());
+        self.waits
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .observe(&BUCKETS, waited.as_secs_f64());
+    }
+
+    pub fn lease_expired(&self) {
+        self.lease_expiries.fetch_add(1, Ordering::Relaxed);
+    }
+
+    pub fn store_error(&self) {
+        self.store_errors.fetch_add(1, Ordering::Relaxed);
     }
 }
 
@@ -96,8 +154,8 @@ pub async fn track(State(st): State<AppState>, req: Request, next: Next) -> Resp
     resp
 }
 
-/// The exposition text.
-pub fn render(st: &AppState) -> String {
+/// The exposition text; `stats`: the store's counts (`None`: unreachable).
+pub fn render(st: &AppState, stats: Option<Stats>) -> String {
     let mut s = String::new();
     s.push_str("# HELP whirl_http_requests_total HTTP requests by method, route and status.\n");
     s.push_str("# TYPE whirl_http_requests_total counter\n");
@@ -112,19 +170,91 @@ pub fn render(st: &AppState) -> String {
             "whirl_http_requests_total{{method=\"{m}\",route=\"{r}\",status=\"{c}\"}} {n}\n"
         ));
     }
-    s.push_str("# HELP whirl_jobs Jobs held, by status.\n# TYPE whirl_jobs gauge\n");
-    for (status, n) in st.jobs.counts() {
+    s.push_str(&format!(
+        "# HELP whirl_store_up Whether the job store ({}) answers.\n",
+        if st.jobs.store.shared() {
+            "PostgreSQL"
+        } else {
+            "SQLite"
+        }
+    ));
+    s.push_str(&format!(
+        "# TYPE whirl_store_up gauge\nwhirl_store_up {}\n",
+        u8::from(stats.is_some())
+    ));
+    if let Some(stats) = &stats {
+        s.push_str("# HELP whirl_jobs Jobs in the store (all replicas), by status.\n");
+        s.push_str("# TYPE whirl_jobs gauge\n");
+        for status in [
+            JobStatus::Queued,
+            JobStatus::Running,
+            JobStatus::Succeeded,
+            JobStatus::Failed,
+            JobStatus::Cancelled,
+        ] {
+            s.push_str(&format!(
+                "whirl_jobs{{status=\"{}\"}} {}\n",
+                status_name(status),
+                stats.count(status)
+            ));
+        }
+        s.push_str(
+            "# HELP whirl_store_queue_depth Jobs waiting in the shared queue (all replicas).\n",
+        );
         s.push_str(&format!(
-            "whirl_jobs{{status=\"{}\"}} {n}\n",
-            status_name(status)
+            "# TYPE whirl_store_queue_depth gauge\nwhirl_store_queue_depth {}\n",
+            stats.count(JobStatus::Queued)
+        ));
+        s.push_str(
+            "# HELP whirl_job_results_bytes Compressed bytes of finished results in the store.\n",
+        );
+        s.push_str(&format!(
+            "# TYPE whirl_job_results_bytes gauge\nwhirl_job_results_bytes {}\n",
+            stats.result_bytes
         ));
     }
+    s.push_str("# HELP whirl_jobs_running_here Jobs running on this replica.\n");
+    s.push_str(&format!(
+        "# TYPE whirl_jobs_running_here gauge\nwhirl_jobs_running_here {}\n",
+        st.jobs.runner.running_here()
+    ));
+    let m = &st.metrics;
+    s.push_str("# HELP whirl_store_lease_expiries_total Jobs found with an expired lease (their server died) by this replica.\n");
+    s.push_str(&format!(
+        "# TYPE whirl_store_lease_expiries_total counter\nwhirl_store_lease_expiries_total {}\n",
+        m.lease_expiries.load(Ordering::Relaxed)
+    ));
+    s.push_str("# HELP whirl_store_errors_total Failed operations on the job store.\n");
+    s.push_str(&format!(
+        "# TYPE whirl_store_errors_total counter\nwhirl_store_errors_total {}\n",
+        m.store_errors.load(Ordering::Relaxed)
+    ));
+    s.push_str("# HELP whirl_store_claim_duration_seconds Time to claim a queued job.\n");
+    s.push_str("# TYPE whirl_store_claim_duration_seconds histogram\n");
+    m.claims.lock().unwrap_or_else(|e| e.into_inner()).render(
+        &mut s,
+        "whirl_store_claim_duration_seconds",
+        "",
+        &CLAIM_BUCKETS,
+    );
+    s.push_str(
+        "# HELP whirl_job_queue_wait_seconds Time jobs waited in the queue before a claim.\n",
+    );
+    s.push_str("# TYPE whirl_job_queue_wait_seconds histogram\n");
+    m.waits.lock().unwrap_or_else(|e| e.into_inner()).render(
+        &mut s,
+        "whirl_job_queue_wait_seconds",
+        "",
+        &BUCKETS,
+    );
     let running = st.pool.running();
     s.push_str("# HELP whirl_analyses_running Analyses running on the workers.\n");
     s.push_str(&format!(
         "# TYPE whirl_analyses_running gauge\nwhirl_analyses_running {running}\n"
     ));
-    s.push_str("# HELP whirl_queue_depth Analyses admitted and waiting for a worker.\n");
+    s.push_str(
+        "# HELP whirl_queue_depth Analyses of this server admitted and waiting for a worker.\n",
+    );
     s.push_str(&format!(
         "# TYPE whirl_queue_depth gauge\nwhirl_queue_depth {}\n",
         st.pool.in_flight().saturating_sub(running)
@@ -141,11 +271,6 @@ pub fn render(st: &AppState) -> String {
         "# TYPE whirl_memory_budget_bytes gauge\nwhirl_memory_budget_bytes {}\n",
         st.pool.memory_budget()
     ));
-    s.push_str("# HELP whirl_job_results_bytes Compressed bytes of finished results held.\n");
-    s.push_str(&format!(
-        "# TYPE whirl_job_results_bytes gauge\nwhirl_job_results_bytes {}\n",
-        st.jobs.stored_bytes()
-    ));
     s.push_str("# HELP whirl_analysis_duration_seconds Wall time of analyses.\n");
     s.push_str("# TYPE whirl_analysis_duration_seconds histogram\n");
     for (a, h) in st
@@ -155,23 +280,12 @@ pub fn render(st: &AppState) -> String {
         .unwrap_or_else(|e| e.into_inner())
         .iter()
     {
-        for (le, c) in BUCKETS.iter().zip(h.counts) {
-            s.push_str(&format!(
-                "whirl_analysis_duration_seconds_bucket{{analysis=\"{a}\",le=\"{le}\"}} {c}\n"
-            ));
-        }
-        s.push_str(&format!(
-            "whirl_analysis_duration_seconds_bucket{{analysis=\"{a}\",le=\"+Inf\"}} {}\n",
-            h.count
-        ));
-        s.push_str(&format!(
-            "whirl_analysis_duration_seconds_sum{{analysis=\"{a}\"}} {}\n",
-            h.sum
-        ));
-        s.push_str(&format!(
-            "whirl_analysis_duration_seconds_count{{analysis=\"{a}\"}} {}\n",
-            h.count
-        ));
+        h.render(
+            &mut s,
+            "whirl_analysis_duration_seconds",
+            &format!("analysis=\"{a}\""),
+            &BUCKETS,
+        );
     }
     s
 }

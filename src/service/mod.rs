@@ -2,7 +2,9 @@
 //!
 //! [`app`] builds the whole router from a [`Config`], so tests drive it in process without a
 //! socket. Requests are validated on the async runtime (cheap); every numerical analysis runs
-//! on the blocking [`pool::WorkerPool`], so a long sweep never stalls other requests.
+//! on the blocking [`pool::WorkerPool`], so a long sweep never stalls other requests. Jobs live
+//! in the [`store::Store`] (SQLite by default, PostgreSQL shared by replicas), and each
+//! replica's [`runner::Runner`] claims and runs them on its pool.
 
 pub mod config;
 pub mod convert;
@@ -13,8 +15,11 @@ pub mod metrics;
 pub mod openapi;
 pub mod plot;
 pub mod pool;
+pub mod results;
 pub mod routes;
+pub mod runner;
 pub mod server;
+pub mod store;
 pub mod task;
 
 use std::sync::Arc;
@@ -43,27 +48,42 @@ pub struct AppState {
 }
 
 impl AppState {
+    /// The state, with its job store not yet connected and its runner not started (see
+    /// [`AppState::start`]).
     pub fn new(config: Config) -> Self {
         // One problem per core: faer stays sequential, sweeps parallelise over speeds.
         crate::linalg::set_sequential();
-        let limits = jobs::JobLimits {
-            retention: config.job_retention,
+        let retention = store::Retention {
+            age: config.job_retention,
             max_finished: config.max_finished_jobs,
-            time_limit: config.job_time_limit,
-            max_result_bytes: config.job_result_bytes,
-            max_response_bytes: config.max_response_bytes,
+            max_bytes: config.job_result_bytes,
         };
+        let config = Arc::new(config);
+        let pool = Arc::new(pool::WorkerPool::new(
+            config.workers,
+            config.queue,
+            config.threads(),
+            config.memory_budget,
+        ));
+        let metrics = Arc::new(metrics::Metrics::default());
+        let store = Arc::new(store::Store::new(config.store_target(), retention));
+        let runner = Arc::new(runner::Runner::new(
+            store.clone(),
+            pool.clone(),
+            metrics.clone(),
+            config.clone(),
+        ));
         AppState {
-            pool: Arc::new(pool::WorkerPool::new(
-                config.workers,
-                config.queue,
-                config.threads(),
-                config.memory_budget,
-            )),
-            jobs: Arc::new(jobs::Jobs::new(limits)),
-            metrics: Arc::new(metrics::Metrics::default()),
-            config: Arc::new(config),
+            jobs: Arc::new(jobs::Jobs::new(store, runner, config.queue)),
+            pool,
+            metrics,
+            config,
         }
+    }
+
+    /// Starts claiming and running jobs, and the store's upkeep (on the current runtime).
+    pub fn start(&self) {
+        self.jobs.runner.start();
     }
 }
 
@@ -226,18 +246,20 @@ impl tower_http::request_id::MakeRequestId for RequestIds {
     }
 }
 
-/// The application.
+/// The application, running jobs (call it inside a Tokio runtime).
 pub fn app(config: Config) -> Router {
-    router(AppState::new(config)).0
+    app_with_state(config).0
 }
 
 /// The application and its state (for the binary's graceful shutdown of jobs).
 pub fn app_with_state(config: Config) -> (Router, AppState) {
     let state = AppState::new(config);
+    state.start();
     (router(state.clone()).0, state)
 }
 
-/// The OpenAPI document the server serves (also committed as `openapi/openapi.json`).
+/// The OpenAPI document the server serves (also committed as `openapi/openapi.json`); the
+/// store is never touched.
 pub fn openapi_document() -> utoipa::openapi::OpenApi {
     router(AppState::new(Config::default())).1
 }

@@ -10,15 +10,19 @@
 //! - **Memory.** A long analysis holds its estimated peak heap (see `model::limits`) from a
 //!   budget while it runs, and waits when the budget is spent; one that could never fit is
 //!   refused at admission (422). Short analyses are bounded by their lane's count instead.
-//! - **Admission.** At most `workers + queue` analyses are running or waiting; beyond that a
-//!   request is refused at once with 503 and `Retry-After` rather than piling up memory.
+//! - **Admission.** At most `workers + queue` synchronous analyses are running or waiting;
+//!   beyond that a request is refused at once with 503 and `Retry-After` rather than piling up
+//!   memory.
+//! - **Jobs** wait in the shared queue (`service::store`), not here: a replica claims one only
+//!   with a free worker of its lane in hand ([`WorkerPool::try_worker`]) and when its memory
+//!   estimate fits the free budget, so claims respect each replica's workers and memory.
 //!
 //! A panic inside an analysis fails that request with 500 and leaves the server serving.
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use tokio::sync::Semaphore;
+use tokio::sync::{OwnedSemaphorePermit, Semaphore};
 
 use super::error::ApiError;
 use crate::model::{Cost, Invalid};
@@ -67,6 +71,14 @@ pub struct WorkerPool {
 pub struct Admission {
     _slot: Slot,
     lane: Lane,
+    mib: u32,
+}
+
+/// A claimed job's place in the pool (see [`WorkerPool::reserve`]).
+pub struct Reserved {
+    _slot: Slot,
+    worker: OwnedSemaphorePermit,
+    memory: Option<OwnedSemaphorePermit>,
     mib: u32,
 }
 
@@ -139,9 +151,9 @@ impl WorkerPool {
         self.budget_mib * MIB
     }
 
-    /// Takes a place for an analysis of this cost: 422 when it could never fit in the memory
-    /// budget (`path`: the field that sizes it), 503 when workers and queue are full.
-    pub fn admit(&self, cost: &Cost, path: &str) -> Result<Admission, ApiError> {
+    /// The lane and the MiB of budget an analysis of this cost needs: 422 when it could never
+    /// fit in the memory budget (`path`: the field that sizes it).
+    pub fn needs(&self, cost: &Cost, path: &str) -> Result<(Lane, u64), ApiError> {
         let lane = Lane::of(cost);
         let mib = match lane {
             Lane::Short => 0,
@@ -157,6 +169,13 @@ impl WorkerPool {
                 ),
             )));
         }
+        Ok((lane, mib))
+    }
+
+    /// Takes a place for an analysis of this cost: 422 when it could never fit in the memory
+    /// budget (`path`: the field that sizes it), 503 when workers and queue are full.
+    pub fn admit(&self, cost: &Cost, path: &str) -> Result<Admission, ApiError> {
+        let (lane, mib) = self.needs(cost, path)?;
         let before = self.in_flight.fetch_add(1, Ordering::SeqCst);
         let slot = Slot(self.in_flight.clone());
         if before >= self.workers + self.queue {
@@ -167,6 +186,39 @@ impl WorkerPool {
             lane,
             mib: mib as u32,
         })
+    }
+
+    /// A free worker of `lane` now, if there is one (a job is claimed from the shared queue
+    /// only with one in hand).
+    pub fn try_worker(&self, lane: Lane) -> Option<OwnedSemaphorePermit> {
+        match lane {
+            Lane::Short => self.short.clone().try_acquire_owned().ok(),
+            Lane::Long => self.long.clone().try_acquire_owned().ok(),
+        }
+    }
+
+    /// MiB of the budget free now.
+    pub fn memory_free_mib(&self) -> u64 {
+        self.memory.available_permits() as u64
+    }
+
+    /// A claimed job's place: the worker taken for it, and its memory if free now (else it is
+    /// waited for when the job runs). Counted in flight, beyond the queue bound (the job was
+    /// admitted to the shared queue).
+    pub fn reserve(&self, worker: OwnedSemaphorePermit, mib: u64) -> Reserved {
+        self.in_flight.fetch_add(1, Ordering::SeqCst);
+        let mib = mib.min(self.budget_mib) as u32;
+        let memory = if mib > 0 {
+            self.memory.clone().try_acquire_many_owned(mib).ok()
+        } else {
+            None
+        };
+        Reserved {
+            _slot: Slot(self.in_flight.clone()),
+            worker,
+            memory,
+            mib,
+        }
     }
 
     /// Runs an admitted analysis: waits for its lane and its memory, calls `started`, then runs
@@ -183,7 +235,6 @@ impl WorkerPool {
         T: Send + 'static,
         F: FnOnce() -> T + Send + 'static,
     {
-        let closed = |_| ApiError::Internal("the worker pool is closed".into());
         let memory = if admission.mib > 0 {
             Some(
                 self.memory
@@ -201,12 +252,43 @@ impl WorkerPool {
         };
         let permit = lane.acquire_owned().await.map_err(closed)?;
         started();
+        let kind = admission.lane;
+        self.spawn(kind, (permit, memory, admission), f).await
+    }
+
+    /// Runs a reserved job's analysis like [`run`](Self::run), first waiting for its memory if
+    /// it was not free when the job was claimed.
+    pub async fn run_reserved<T, F>(&self, lane: Lane, r: Reserved, f: F) -> Result<T, ApiError>
+    where
+        T: Send + 'static,
+        F: FnOnce() -> T + Send + 'static,
+    {
+        let memory = match r.memory {
+            Some(m) => Some(m),
+            None if r.mib > 0 => Some(
+                self.memory
+                    .clone()
+                    .acquire_many_owned(r.mib)
+                    .await
+                    .map_err(closed)?,
+            ),
+            None => None,
+        };
+        self.spawn(lane, (r.worker, memory, r._slot), f).await
+    }
+
+    /// Runs `f` on a blocking thread in the lane's compute pool, holding `held` until it returns.
+    async fn spawn<T, F, H>(&self, lane: Lane, held: H, f: F) -> Result<T, ApiError>
+    where
+        T: Send + 'static,
+        F: FnOnce() -> T + Send + 'static,
+        H: Send + 'static,
+    {
         let threads = self.threads;
         let short = self.short_pool.clone();
-        let kind = admission.lane;
         tokio::task::spawn_blocking(move || {
-            let _held = (permit, memory, admission);
-            match kind {
+            let _held = held;
+            match lane {
                 Lane::Short => short.install(f),
                 Lane::Long => {
                     let pool = rayon::ThreadPoolBuilder::new()
@@ -230,6 +312,21 @@ impl WorkerPool {
             }
         })
     }
+}
+
+/// Gives the heap the allocator keeps after a large analysis back to the system (glibc keeps
+/// freed memory in per-thread arenas; without this the resident size of a server creeps up by
+/// the peaks of past analyses). Blocking: call it off the async runtime.
+pub fn release_free_memory() {
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    // SAFETY: malloc_trim only walks the allocator's own free lists.
+    unsafe {
+        libc::malloc_trim(0);
+    }
+}
+
+fn closed(_: tokio::sync::AcquireError) -> ApiError {
+    ApiError::Internal("the worker pool is closed".into())
 }
 
 #[cfg(test)]

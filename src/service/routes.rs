@@ -6,20 +6,18 @@ use axum::extract::Path;
 use axum::extract::State;
 use axum::http::{HeaderMap, HeaderValue, StatusCode, Uri, header};
 use axum::response::{IntoResponse, Response};
-use serde_json::Value;
 
 use super::AppState;
 use super::error::ApiError;
 use super::jobs;
-use super::json::{ApiJson, from_value};
+use super::json::ApiJson;
+use super::results;
 use super::task::{negotiate, respond};
-use crate::model::Invalid;
 use crate::model::api::{
-    AnalysisName, CampbellResponse, DampingMatricesRequest, DampingMatricesResponse, JobInfo,
-    JobRequest, ModalRequest, ModalResponse, Problem, StabilityResponse, Status, SweepRequest,
+    CampbellResponse, DampingMatricesRequest, DampingMatricesResponse, JobInfo, JobRequest,
+    ModalRequest, ModalResponse, Problem, StabilityResponse, Status, SweepRequest,
     TimeResponseRequest, TimeResponseResponse, UnbalanceResponseRequest, UnbalanceResponseResponse,
 };
-use crate::model::task::JobInput;
 
 /// The errors every analysis endpoint may answer, as problem+json.
 #[derive(utoipa::IntoResponses)]
@@ -73,28 +71,32 @@ pub async fn healthz() -> Json<Status> {
     })
 }
 
-/// Readiness: 200 while the worker pool accepts work, 503 when its queue is full.
+/// Readiness: 200 while the job store answers and there is room for work; 503 when the store
+/// is unreachable, or the worker pool's or the shared job queue is full.
 #[utoipa::path(get, path = "/readyz", tag = "operations",
     responses(
         (status = 200, description = "Accepting work", body = Status),
-        (status = 503, description = "Queue full", body = Status)))]
+        (status = 503, description = "Store unreachable, or queue full", body = Status)))]
 pub async fn readyz(State(st): State<AppState>) -> (StatusCode, Json<Status>) {
-    if st.pool.ready() {
+    let answer = |code, status: &str| {
         (
-            StatusCode::OK,
+            code,
             Json(Status {
-                status: "ready".into(),
+                status: status.into(),
             }),
         )
-    } else {
-        (
-            StatusCode::SERVICE_UNAVAILABLE,
-            Json(Status {
-                status: "busy".into(),
-            }),
-        )
+    };
+    match tokio::time::timeout(STORE_CHECK, st.jobs.queued()).await {
+        Ok(Ok(queued)) if st.pool.ready() && !st.jobs.full(queued) => {
+            answer(StatusCode::OK, "ready")
+        }
+        Ok(Ok(_)) => answer(StatusCode::SERVICE_UNAVAILABLE, "busy"),
+        Ok(Err(_)) | Err(_) => answer(StatusCode::SERVICE_UNAVAILABLE, "store unreachable"),
     }
 }
+
+/// Longest `/readyz` and `/metrics` wait for the job store.
+const STORE_CHECK: std::time::Duration = std::time::Duration::from_secs(2);
 
 /// Poles at one spin speed.
 ///
@@ -246,40 +248,26 @@ pub async fn unbalance_response(
         (status = 413, description = "Body too large", body = Problem, content_type = "application/problem+json"),
         (status = 415, description = "The body is not declared as JSON", body = Problem, content_type = "application/problem+json"),
         (status = 422, description = "Invalid input", body = Problem, content_type = "application/problem+json"),
-        (status = 503, description = "Queue full; see Retry-After", body = Problem, content_type = "application/problem+json")))]
+        (status = 503, description = "Queue full, or the job store unreachable; see Retry-After", body = Problem, content_type = "application/problem+json")))]
 pub async fn submit_job(
     State(st): State<AppState>,
     ApiJson(req): ApiJson<JobRequest>,
 ) -> Result<Response, ApiError> {
-    let input = job_input(req.analysis, req.input).map_err(in_input)?;
+    let input = jobs::job_input(req.analysis, req.input.clone()).map_err(in_input)?;
     let task = input
         .parse(&st.config.limits())
         .map_err(|e| in_input(e.into()))?;
-    let info = jobs::submit(&st, task).map_err(in_input)?;
+    let info = st
+        .jobs
+        .submit(&st.pool, &req.input, &task)
+        .await
+        .map_err(in_input)?;
     let location = format!("/v1/jobs/{}", info.id);
     let mut resp = (StatusCode::ACCEPTED, Json(info)).into_response();
     if let Ok(v) = HeaderValue::from_str(&location) {
         resp.headers_mut().insert(header::LOCATION, v);
     }
     Ok(resp)
-}
-
-/// A job's input, typed by its analysis.
-fn job_input(analysis: AnalysisName, input: Value) -> Result<JobInput, ApiError> {
-    if !input.is_object() {
-        return Err(ApiError::Invalid(Invalid::one(
-            "(body)",
-            "must be a JSON object: the body of the analysis's endpoint",
-        )));
-    }
-    Ok(match analysis {
-        AnalysisName::Modal => JobInput::Modal(from_value(input)?),
-        AnalysisName::Campbell => JobInput::Campbell(from_value(input)?),
-        AnalysisName::Stability => JobInput::Stability(from_value(input)?),
-        AnalysisName::Damping => JobInput::Damping(from_value(input)?),
-        AnalysisName::TimeResponse => JobInput::Time(from_value(input)?),
-        AnalysisName::UnbalanceResponse => JobInput::Unbalance(from_value(input)?),
-    })
 }
 
 /// Paths of a job's input are under `input`.
@@ -304,12 +292,13 @@ fn in_input(e: ApiError) -> ApiError {
     params(("id" = String, Path, description = "Job id")),
     responses(
         (status = 200, description = "Status", body = JobInfo),
-        (status = 404, description = "Unknown or forgotten job", body = Problem, content_type = "application/problem+json")))]
+        (status = 404, description = "Unknown or forgotten job", body = Problem, content_type = "application/problem+json"),
+        (status = 503, description = "The job store is unreachable; see Retry-After", body = Problem, content_type = "application/problem+json")))]
 pub async fn get_job(
     State(st): State<AppState>,
     Path(id): Path<String>,
 ) -> Result<Json<JobInfo>, ApiError> {
-    st.jobs.get(&id).map(Json)
+    st.jobs.get(&id).await.map(Json)
 }
 
 /// A succeeded job's result: the body its synchronous endpoint returns (JSON, CSV or SVG by
@@ -321,29 +310,16 @@ pub async fn get_job(
          content((Object = "application/json"), (String = "text/csv"), (String = "image/svg+xml"))),
         (status = 404, description = "Unknown or forgotten job", body = Problem, content_type = "application/problem+json"),
         (status = 406, description = "Format not available", body = Problem, content_type = "application/problem+json"),
-        (status = 409, description = "Not succeeded (yet)", body = Problem, content_type = "application/problem+json")))]
+        (status = 409, description = "Not succeeded (yet)", body = Problem, content_type = "application/problem+json"),
+        (status = 503, description = "The job store is unreachable; see Retry-After", body = Problem, content_type = "application/problem+json")))]
 pub async fn job_result(
     State(st): State<AppState>,
     headers: HeaderMap,
     Path(id): Path<String>,
 ) -> Result<Response, ApiError> {
     let formats = negotiate(&headers)?;
-    let stored = st.jobs.result(&id)?;
-    let gzip_ok = accepts_gzip(&headers);
-    // Decompressing and re-rendering a large result is work: off the runtime.
-    let (rendered, gzipped) = tokio::task::spawn_blocking(move || stored.render(&formats, gzip_ok))
-        .await
-        .map_err(|e| ApiError::Internal(e.to_string()))??;
-    let mut resp = rendered.into_response();
-    let h = resp.headers_mut();
-    h.insert(
-        header::VARY,
-        HeaderValue::from_static("accept, accept-encoding"),
-    );
-    if gzipped {
-        h.insert(header::CONTENT_ENCODING, HeaderValue::from_static("gzip"));
-    }
-    Ok(resp)
+    let row = st.jobs.result(&id).await?;
+    results::respond(st.jobs.store.clone(), row, formats, accepts_gzip(&headers)).await
 }
 
 /// Whether `Accept-Encoding` takes gzip (q > 0).
@@ -364,26 +340,35 @@ fn accepts_gzip(headers: &HeaderMap) -> bool {
         })
 }
 
-/// Cancel a job: recorded as `cancelled` at once (200); a running analysis stops at its next
-/// check (between speeds, samples or steps) and frees its worker then. 409 if it has finished.
+/// Cancel a job: recorded as `cancelled` at once (200), on whichever replica receives it; the
+/// running analysis stops at its next check (between speeds, samples or steps) on the replica
+/// running it, within a second, and frees its worker then. 409 if it has finished.
 #[utoipa::path(delete, path = "/v1/jobs/{id}", tag = "jobs",
     params(("id" = String, Path, description = "Job id")),
     responses(
         (status = 200, description = "Cancelled", body = JobInfo),
         (status = 404, description = "Unknown or forgotten job", body = Problem, content_type = "application/problem+json"),
-        (status = 409, description = "Already finished", body = Problem, content_type = "application/problem+json")))]
+        (status = 409, description = "Already finished", body = Problem, content_type = "application/problem+json"),
+        (status = 503, description = "The job store is unreachable; see Retry-After", body = Problem, content_type = "application/problem+json")))]
 pub async fn cancel_job(
     State(st): State<AppState>,
     Path(id): Path<String>,
 ) -> Result<Json<JobInfo>, ApiError> {
-    st.jobs.cancel(&id, "cancelled by the client").map(Json)
+    st.jobs
+        .cancel(&id, "cancelled by the client")
+        .await
+        .map(Json)
 }
 
 /// Prometheus metrics.
 #[utoipa::path(get, path = "/metrics", tag = "operations",
     responses((status = 200, description = "Prometheus text format", body = String, content_type = "text/plain")))]
 pub async fn metrics(State(st): State<AppState>) -> Response {
-    let mut resp = super::metrics::render(&st).into_response();
+    let stats = match tokio::time::timeout(STORE_CHECK, st.jobs.stats()).await {
+        Ok(r) => r,
+        Err(_) => Err(super::store::StoreError("no answer".into())),
+    };
+    let mut resp = super::metrics::render(&st, stats.ok()).into_response();
     resp.headers_mut().insert(
         header::CONTENT_TYPE,
         HeaderValue::from_static("text/plain; version=0.0.4; charset=utf-8"),

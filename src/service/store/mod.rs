@@ -1,0 +1,446 @@
+//! The job store: the queue and the results of jobs, in a database that every replica shares.
+//!
+//! # Design
+//!
+//! - **One small interface, two engines.** [`Store`] is an enum over an embedded SQLite file
+//!   under `WHIRL_DATA_DIR` (the default: one server keeps its jobs and results across
+//!   restarts, with no setup) and PostgreSQL (`WHIRL_DATABASE_URL`: several replicas serve one
+//!   queue). Both run the same statements, spelled for each engine, on the same schema
+//!   (`migrations/`, embedded in the binary and applied at connection).
+//! - **A job is a row** (`jobs`): the request as received (analysis name and JSON input, so any
+//!   replica parses it again into a task with its own limits), its lane and memory estimate
+//!   (so a replica claims only what fits its pool), status, progress, timestamps, error
+//!   (problem JSON), the replica that claimed it and its lease, and two counters: `attempts`
+//!   (claims, i.e. executions) and `expiries` (leases that ran out).
+//! - **Results** are the gzipped JSON of `jobs::Stored`, cut into chunks of [`CHUNK`] bytes
+//!   (`job_chunks`), written with the final status in one transaction and read back one chunk
+//!   at a time, so neither storing nor serving a result holds more than a chunk beyond what the
+//!   analysis itself produced.
+//! - **Claims.** A replica with a free worker takes the oldest queued job that fits its free
+//!   lane and memory: one `UPDATE ... WHERE id = (SELECT ... FOR UPDATE SKIP LOCKED)` on
+//!   PostgreSQL, so concurrent replicas never take the same row and never wait for each other.
+//!   (SQLite serialises writers itself.) The claim sets `running`, the worker, a lease, and
+//!   counts an attempt.
+//! - **Leases.** The worker renews its lease with the job's progress every 250 ms; the same
+//!   statement tells it when the job was cancelled elsewhere (it then matches no row). Any
+//!   replica re-queues a job whose lease ran out (its worker died) once, and fails it with that
+//!   reason the second time. Leases use the database's clock on PostgreSQL.
+//! - **Fencing.** Every write of a worker names the worker and requires `running`, so a worker
+//!   that lost its job (cancelled, re-queued, purged) changes nothing.
+//! - **Admission** counts the shared queue: a job is inserted only while fewer than `queue`
+//!   jobs wait (under an advisory lock on PostgreSQL, so replicas do not overshoot together).
+//! - **Retention** is enforced in the store: finished jobs older than `retention` are not
+//!   returned and are deleted, and beyond `max_finished` jobs or `max_bytes` of results the
+//!   oldest finished are deleted (their chunks with them).
+//! - **Lazy connection.** The first use connects and migrates; a failure is returned (503)
+//!   and retried at the next use, so a server starts without its database and `/readyz` says
+//!   so.
+
+mod postgres;
+mod sqlite;
+
+use std::borrow::Cow;
+use std::path::PathBuf;
+use std::time::{Duration, SystemTime, UNIX_EPOCH};
+
+use sqlx::error::BoxDynError;
+use sqlx::migrate::{Migration, MigrationSource, MigrationType, Migrator};
+use tokio::sync::OnceCell;
+
+use super::pool::Lane;
+use crate::model::api::{JobStatus, Problem};
+
+/// Bytes of a result chunk.
+pub const CHUNK: usize = 1 << 20;
+/// Longest wait for a connection (then 503).
+const CONNECT_TIMEOUT: Duration = Duration::from_secs(5);
+
+/// How long finished jobs and their results are kept.
+#[derive(Debug, Clone, Copy)]
+pub struct Retention {
+    pub age: Duration,
+    pub max_finished: usize,
+    pub max_bytes: u64,
+}
+
+/// A job to insert.
+pub struct NewJob<'a> {
+    pub id: &'a str,
+    pub analysis: &'a str,
+    pub input: &'a str,
+    pub lane: Lane,
+    pub memory_mib: u64,
+}
+
+/// A job as the API shows it.
+#[derive(Debug, Clone)]
+pub struct JobRow {
+    pub id: String,
+    pub analysis: String,
+    pub status: JobStatus,
+    pub progress: f64,
+    /// Milliseconds since the Unix epoch.
+    pub created_ms: i64,
+    pub started_ms: Option<i64>,
+    pub finished_ms: Option<i64>,
+    pub error: Option<Problem>,
+    pub attempts: i64,
+    pub result_bytes: i64,
+    pub result_chunks: i64,
+}
+
+/// A job this replica has claimed.
+#[derive(Debug, Clone)]
+pub struct Claimed {
+    pub id: String,
+    pub analysis: String,
+    pub input: String,
+    pub lane: Lane,
+    pub memory_mib: u64,
+    /// Time it waited in the queue.
+    pub waited: Duration,
+}
+
+/// What this replica's pool can take now.
+#[derive(Debug, Clone, Copy)]
+pub struct Room {
+    pub short: bool,
+    pub long: bool,
+    pub memory_mib: u64,
+}
+
+/// How a job ended, as its worker records it.
+pub enum Ending {
+    Succeeded(Vec<u8>),
+    Failed(Problem),
+    Cancelled(Problem),
+}
+
+/// A job whose lease ran out, and what became of it.
+#[derive(Debug, Clone)]
+pub struct Reaped {
+    pub id: String,
+    /// `queued` again, or `failed`.
+    pub requeued: bool,
+}
+
+/// Jobs by status and bytes of results, over all replicas.
+#[derive(Debug, Clone, Default)]
+pub struct Stats {
+    pub counts: Vec<(JobStatus, i64)>,
+    pub result_bytes: i64,
+}
+
+impl Stats {
+    pub fn count(&self, s: JobStatus) -> i64 {
+        self.counts
+            .iter()
+            .find(|(k, _)| *k == s)
+            .map_or(0, |(_, n)| *n)
+    }
+}
+
+/// The store failed (unreachable, or an error of the database).
+#[derive(Debug, Clone)]
+pub struct StoreError(pub String);
+
+impl std::fmt::Display for StoreError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl From<sqlx::Error> for StoreError {
+    fn from(e: sqlx::Error) -> Self {
+        StoreError(format!("job store: {e}"))
+    }
+}
+
+impl From<sqlx::migrate::MigrateError> for StoreError {
+    fn from(e: sqlx::migrate::MigrateError) -> Self {
+        StoreError(format!("job store migration: {e}"))
+    }
+}
+
+pub fn status_text(s: JobStatus) -> &'static str {
+    match s {
+        JobStatus::Queued => "queued",
+        JobStatus::Running => "running",
+        JobStatus::Succeeded => "succeeded",
+        JobStatus::Failed => "failed",
+        JobStatus::Cancelled => "cancelled",
+    }
+}
+
+pub(crate) fn parse_status(s: &str) -> Result<JobStatus, sqlx::Error> {
+    Ok(match s {
+        "queued" => JobStatus::Queued,
+        "running" => JobStatus::Running,
+        "succeeded" => JobStatus::Succeeded,
+        "failed" => JobStatus::Failed,
+        "cancelled" => JobStatus::Cancelled,
+        other => return Err(sqlx::Error::Decode(format!("job status {other:?}").into())),
+    })
+}
+
+pub(crate) fn lane_text(l: Lane) -> &'static str {
+    match l {
+        Lane::Short => "short",
+        Lane::Long => "long",
+    }
+}
+
+pub(crate) fn parse_lane(s: &str) -> Lane {
+    if s == "short" {
+        Lane::Short
+    } else {
+        Lane::Long
+    }
+}
+
+pub(crate) fn parse_problem(s: Option<String>) -> Option<Problem> {
+    s.and_then(|s| serde_json::from_str(&s).ok())
+}
+
+pub(crate) fn problem_json(p: &Problem) -> String {
+    serde_json::to_string(p).unwrap_or_default()
+}
+
+/// The status, error and result of an ending, as stored.
+pub(crate) fn ending_parts(e: &Ending) -> (&'static str, Option<String>, &[u8]) {
+    match e {
+        Ending::Succeeded(gzip) => ("succeeded", None, gzip),
+        Ending::Failed(p) => ("failed", Some(problem_json(p)), &[]),
+        Ending::Cancelled(p) => ("cancelled", Some(problem_json(p)), &[]),
+    }
+}
+
+pub(crate) fn now_ms() -> i64 {
+    SystemTime::now()
+        .duration_since(UNIX_EPOCH)
+        .map_or(0, |d| d.as_millis() as i64)
+}
+
+pub(crate) fn ms(d: Duration) -> i64 {
+    d.as_millis().min(i64::MAX as u128) as i64
+}
+
+/// Migrations compiled into the binary: (version, description, SQL).
+#[derive(Debug)]
+struct Embedded(&'static [(i64, &'static str, &'static str)]);
+
+impl MigrationSource<'static> for Embedded {
+    fn resolve(
+        self,
+    ) -> futures_util::future::BoxFuture<'static, Result<Vec<Migration>, BoxDynError>> {
+        Box::pin(async move {
+            Ok(self
+                .0
+                .iter()
+                .map(|(v, d, sql)| {
+                    Migration::new(
+                        *v,
+                        Cow::Borrowed(*d),
+                        MigrationType::Simple,
+                        Cow::Borrowed(*sql),
+                        false,
+                    )
+                })
+                .collect())
+        })
+    }
+}
+
+const POSTGRES_MIGRATIONS: Embedded = Embedded(&[(
+    1,
+    "jobs",
+    include_str!("../../../migrations/postgres/0001_jobs.sql"),
+)]);
+const SQLITE_MIGRATIONS: Embedded = Embedded(&[(
+    1,
+    "jobs",
+    include_str!("../../../migrations/sqlite/0001_jobs.sql"),
+)]);
+
+async fn migrator(m: Embedded) -> Result<Migrator, StoreError> {
+    Ok(Migrator::new(m).await?)
+}
+
+/// Where the jobs live.
+#[derive(Debug, Clone)]
+pub enum Target {
+    /// The embedded default: `whirl.sqlite` in this directory.
+    Sqlite(PathBuf),
+    /// A PostgreSQL URL.
+    Postgres(String),
+}
+
+enum Engine {
+    Sqlite(sqlite::Sqlite),
+    Postgres(postgres::Postgres),
+}
+
+/// The job store (see the module docs).
+pub struct Store {
+    target: Target,
+    retention: Retention,
+    engine: OnceCell<Engine>,
+}
+
+/// Runs `$call` on whichever engine is connected.
+macro_rules! on_engine {
+    ($self:ident, $e:ident => $call:expr) => {
+        match $self.engine().await? {
+            Engine::Sqlite($e) => Ok($call.await?),
+            Engine::Postgres($e) => Ok($call.await?),
+        }
+    };
+}
+
+impl Store {
+    /// A store that connects at its first use.
+    pub fn new(target: Target, retention: Retention) -> Self {
+        Store {
+            target,
+            retention,
+            engine: OnceCell::new(),
+        }
+    }
+
+    /// Where the store is, for the logs (no password).
+    pub fn describe(&self) -> String {
+        match &self.target {
+            Target::Sqlite(dir) => format!("sqlite:{}", dir.join(sqlite::FILE).display()),
+            Target::Postgres(url) => postgres::describe(url),
+        }
+    }
+
+    /// Whether it has been connected (by a first use).
+    pub fn connected(&self) -> bool {
+        self.engine.initialized()
+    }
+
+    /// Whether it is the shared engine (PostgreSQL).
+    pub fn shared(&self) -> bool {
+        matches!(self.target, Target::Postgres(_))
+    }
+
+    async fn engine(&self) -> Result<&Engine, StoreError> {
+        self.engine
+            .get_or_try_init(|| async {
+                let connect = async {
+                    match &self.target {
+                        Target::Sqlite(dir) => {
+                            let m = migrator(SQLITE_MIGRATIONS).await?;
+                            sqlite::Sqlite::connect(dir, self.retention, &m)
+                                .await
+                                .map(Engine::Sqlite)
+                        }
+                        Target::Postgres(url) => {
+                            let m = migrator(POSTGRES_MIGRATIONS).await?;
+                            postgres::Postgres::connect(url, self.retention, &m)
+                                .await
+                                .map(Engine::Postgres)
+                        }
+                    }
+                };
+                match tokio::time::timeout(CONNECT_TIMEOUT, connect).await {
+                    Ok(r) => r,
+                    Err(_) => Err(StoreError(format!(
+                        "job store: no connection to {} within {} s",
+                        self.describe(),
+                        CONNECT_TIMEOUT.as_secs()
+                    ))),
+                }
+            })
+            .await
+    }
+
+    /// Connects (and migrates) now; `Ok` when the store answers.
+    pub async fn ping(&self) -> Result<(), StoreError> {
+        on_engine!(self, e => e.ping())
+    }
+
+    /// Inserts a queued job unless `queue` jobs already wait; `None` when the queue is full.
+    pub async fn submit(
+        &self,
+        job: &NewJob<'_>,
+        queue: usize,
+    ) -> Result<Option<JobRow>, StoreError> {
+        on_engine!(self, e => e.submit(job, queue))
+    }
+
+    /// A job, unless unknown or finished longer ago than the retention.
+    pub async fn get(&self, id: &str) -> Result<Option<JobRow>, StoreError> {
+        on_engine!(self, e => e.get(id))
+    }
+
+    /// Records a queued or running job as cancelled with `error`, at once; `None` if it is not
+    /// queued or running (unknown, or finished).
+    pub async fn cancel(&self, id: &str, error: &Problem) -> Result<Option<JobRow>, StoreError> {
+        on_engine!(self, e => e.cancel(id, &problem_json(error)))
+    }
+
+    /// Claims the oldest queued job that fits `room` for `worker`, with a lease.
+    pub async fn claim(
+        &self,
+        worker: &str,
+        room: Room,
+        lease: Duration,
+    ) -> Result<Option<Claimed>, StoreError> {
+        on_engine!(self, e => e.claim(worker, room, lease))
+    }
+
+    /// Renews the lease of a running job and records its progress; `false` when the job is no
+    /// longer this worker's and running (cancelled, re-queued, forgotten).
+    pub async fn heartbeat(
+        &self,
+        id: &str,
+        worker: &str,
+        progress: f64,
+        lease: Duration,
+    ) -> Result<bool, StoreError> {
+        on_engine!(self, e => e.heartbeat(id, worker, progress, lease))
+    }
+
+    /// Records how a running job ended, with its result; `false` (nothing written) when the
+    /// job is no longer this worker's and running.
+    pub async fn finish(
+        &self,
+        id: &str,
+        worker: &str,
+        ending: &Ending,
+    ) -> Result<bool, StoreError> {
+        on_engine!(self, e => e.finish(id, worker, ending))
+    }
+
+    /// Hands a running job back to the queue (this worker is stopping).
+    pub async fn release(&self, id: &str, worker: &str) -> Result<bool, StoreError> {
+        on_engine!(self, e => e.release(id, worker))
+    }
+
+    /// Re-queues running jobs whose lease ran out, or fails them with `error` when their lease
+    /// had run out before.
+    pub async fn reap(&self, error: &Problem) -> Result<Vec<Reaped>, StoreError> {
+        on_engine!(self, e => e.reap(&problem_json(error)))
+    }
+
+    /// Deletes finished jobs beyond the retention; returns how many.
+    pub async fn purge(&self) -> Result<u64, StoreError> {
+        on_engine!(self, e => e.purge())
+    }
+
+    /// Chunk `seq` of a job's result.
+    pub async fn chunk(&self, id: &str, seq: i64) -> Result<Option<Vec<u8>>, StoreError> {
+        on_engine!(self, e => e.chunk(id, seq))
+    }
+
+    /// Jobs waiting in the queue, over all replicas.
+    pub async fn queued(&self) -> Result<i64, StoreError> {
+        on_engine!(self, e => e.queued())
+    }
+
+    pub async fn stats(&self) -> Result<Stats, StoreError> {
+        on_engine!(self, e => e.stats())
+    }
+}

@@ -1,0 +1,321 @@
+//! The embedded store: SQLite in `WHIRL_DATA_DIR/whirl.sqlite` (WAL), for one server. One
+//! connection serialises every statement, so a claim or an admission is atomic without locks;
+//! times are milliseconds since the epoch from this process's clock. Statements as in
+//! `postgres.rs`.
+
+use std::path::Path;
+use std::time::Duration;
+
+use sqlx::Row;
+use sqlx::migrate::Migrator;
+use sqlx::sqlite::{
+    SqliteConnectOptions, SqliteJournalMode, SqlitePool, SqlitePoolOptions, SqliteRow,
+    SqliteSynchronous,
+};
+
+use super::{
+    CHUNK, Claimed, Ending, JobRow, NewJob, Reaped, Retention, Room, Stats, StoreError,
+    ending_parts, lane_text, ms, now_ms, parse_lane, parse_problem, parse_status,
+};
+
+/// The database file in the data directory.
+pub const FILE: &str = "whirl.sqlite";
+
+const ROW: &str = "id, analysis, status, progress, created_at AS created, \
+    started_at AS started, finished_at AS finished, error, attempts, result_bytes, result_chunks";
+
+pub struct Sqlite {
+    pool: SqlitePool,
+    retention: Retention,
+}
+
+fn row(r: &SqliteRow) -> Result<JobRow, sqlx::Error> {
+    Ok(JobRow {
+        id: r.try_get("id")?,
+        analysis: r.try_get("analysis")?,
+        status: parse_status(r.try_get("status")?)?,
+        progress: r.try_get("progress")?,
+        created_ms: r.try_get("created")?,
+        started_ms: r.try_get("started")?,
+        finished_ms: r.try_get("finished")?,
+        error: parse_problem(r.try_get("error")?),
+        attempts: r.try_get("attempts")?,
+        result_bytes: r.try_get("result_bytes")?,
+        result_chunks: r.try_get("result_chunks")?,
+    })
+}
+
+impl Sqlite {
+    pub async fn connect(
+        dir: &Path,
+        retention: Retention,
+        migrator: &Migrator,
+    ) -> Result<Self, StoreError> {
+        std::fs::create_dir_all(dir).map_err(|e| {
+            StoreError(format!(
+                "job store: cannot create WHIRL_DATA_DIR {}: {e}",
+                dir.display()
+            ))
+        })?;
+        let options = SqliteConnectOptions::new()
+            .filename(dir.join(FILE))
+            .create_if_missing(true)
+            .journal_mode(SqliteJournalMode::Wal)
+            .synchronous(SqliteSynchronous::Normal)
+            .foreign_keys(true)
+            .busy_timeout(Duration::from_secs(10));
+        let pool = SqlitePoolOptions::new()
+            .max_connections(1)
+            .acquire_timeout(Duration::from_secs(30))
+            .connect_with(options)
+            .await?;
+        migrator.run(&pool).await?;
+        Ok(Sqlite { pool, retention })
+    }
+
+    pub async fn ping(&self) -> Result<(), sqlx::Error> {
+        sqlx::query("SELECT 1")
+            .execute(&self.pool)
+            .await
+            .map(|_| ())
+    }
+
+    pub async fn submit(
+        &self,
+        job: &NewJob<'_>,
+        queue: usize,
+    ) -> Result<Option<JobRow>, sqlx::Error> {
+        // One statement on the one connection: the count and the insert are atomic.
+        sqlx::query(&format!(
+            "INSERT INTO jobs (id, analysis, input, lane, memory_mib, status, created_at) \
+             SELECT ?1, ?2, ?3, ?4, ?5, 'queued', ?6 \
+             WHERE (SELECT count(*) FROM jobs WHERE status = 'queued') < ?7 RETURNING {ROW}"
+        ))
+        .bind(job.id)
+        .bind(job.analysis)
+        .bind(job.input)
+        .bind(lane_text(job.lane))
+        .bind(job.memory_mib as i64)
+        .bind(now_ms())
+        .bind(queue as i64)
+        .fetch_optional(&self.pool)
+        .await?
+        .as_ref()
+        .map(row)
+        .transpose()
+    }
+
+    pub async fn get(&self, id: &str) -> Result<Option<JobRow>, sqlx::Error> {
+        sqlx::query(&format!(
+            "SELECT {ROW} FROM jobs WHERE id = ?1 AND (finished_at IS NULL OR finished_at > ?2)"
+        ))
+        .bind(id)
+        .bind(now_ms() - ms(self.retention.age))
+        .fetch_optional(&self.pool)
+        .await?
+        .as_ref()
+        .map(row)
+        .transpose()
+    }
+
+    pub async fn cancel(&self, id: &str, error: &str) -> Result<Option<JobRow>, sqlx::Error> {
+        sqlx::query(&format!(
+            "UPDATE jobs SET status = 'cancelled', finished_at = ?3, error = ?2, \
+             lease_until = NULL WHERE id = ?1 AND status IN ('queued', 'running') RETURNING {ROW}"
+        ))
+        .bind(id)
+        .bind(error)
+        .bind(now_ms())
+        .fetch_optional(&self.pool)
+        .await?
+        .as_ref()
+        .map(row)
+        .transpose()
+    }
+
+    pub async fn claim(
+        &self,
+        worker: &str,
+        room: Room,
+        lease: Duration,
+    ) -> Result<Option<Claimed>, sqlx::Error> {
+        let now = now_ms();
+        let r = sqlx::query(
+            "UPDATE jobs SET status = 'running', worker = ?1, attempts = attempts + 1, \
+               started_at = ?2, progress = 0, lease_until = ?2 + ?3 \
+             WHERE id = ( \
+               SELECT id FROM jobs WHERE status = 'queued' \
+                 AND ((lane = 'short' AND ?4) OR (lane = 'long' AND ?5 AND memory_mib <= ?6)) \
+               ORDER BY id LIMIT 1) \
+             RETURNING id, analysis, input, lane, memory_mib, ?2 - created_at AS waited",
+        )
+        .bind(worker)
+        .bind(now)
+        .bind(ms(lease))
+        .bind(room.short)
+        .bind(room.long)
+        .bind(room.memory_mib as i64)
+        .fetch_optional(&self.pool)
+        .await?;
+        let Some(r) = r else { return Ok(None) };
+        Ok(Some(Claimed {
+            id: r.try_get("id")?,
+            analysis: r.try_get("analysis")?,
+            input: r.try_get("input")?,
+            lane: parse_lane(r.try_get("lane")?),
+            memory_mib: r.try_get::<i64, _>("memory_mib")?.max(0) as u64,
+            waited: Duration::from_millis(r.try_get::<i64, _>("waited")?.max(0) as u64),
+        }))
+    }
+
+    pub async fn heartbeat(
+        &self,
+        id: &str,
+        worker: &str,
+        progress: f64,
+        lease: Duration,
+    ) -> Result<bool, sqlx::Error> {
+        let r = sqlx::query(
+            "UPDATE jobs SET progress = ?3, lease_until = ?4 \
+             WHERE id = ?1 AND worker = ?2 AND status = 'running'",
+        )
+        .bind(id)
+        .bind(worker)
+        .bind(progress)
+        .bind(now_ms() + ms(lease))
+        .execute(&self.pool)
+        .await?;
+        Ok(r.rows_affected() == 1)
+    }
+
+    pub async fn finish(
+        &self,
+        id: &str,
+        worker: &str,
+        ending: &Ending,
+    ) -> Result<bool, sqlx::Error> {
+        let (status, error, gzip) = ending_parts(ending);
+        let mut tx = self.pool.begin().await?;
+        let mut chunks = 0i64;
+        for (seq, data) in gzip.chunks(CHUNK).enumerate() {
+            sqlx::query("INSERT INTO job_chunks (job_id, seq, data) VALUES (?1, ?2, ?3)")
+                .bind(id)
+                .bind(seq as i64)
+                .bind(data)
+                .execute(&mut *tx)
+                .await?;
+            chunks += 1;
+        }
+        let r = sqlx::query(
+            "UPDATE jobs SET status = ?3, error = ?4, finished_at = ?5, lease_until = NULL, \
+               result_bytes = ?6, result_chunks = ?7, \
+               progress = CASE WHEN ?3 = 'succeeded' THEN 1 ELSE progress END \
+             WHERE id = ?1 AND worker = ?2 AND status = 'running'",
+        )
+        .bind(id)
+        .bind(worker)
+        .bind(status)
+        .bind(error)
+        .bind(now_ms())
+        .bind(gzip.len() as i64)
+        .bind(chunks)
+        .execute(&mut *tx)
+        .await?;
+        if r.rows_affected() != 1 {
+            tx.rollback().await?;
+            return Ok(false);
+        }
+        tx.commit().await?;
+        Ok(true)
+    }
+
+    pub async fn release(&self, id: &str, worker: &str) -> Result<bool, sqlx::Error> {
+        let r = sqlx::query(
+            "UPDATE jobs SET status = 'queued', worker = NULL, lease_until = NULL, \
+               started_at = NULL, progress = 0 \
+             WHERE id = ?1 AND worker = ?2 AND status = 'running'",
+        )
+        .bind(id)
+        .bind(worker)
+        .execute(&self.pool)
+        .await?;
+        Ok(r.rows_affected() == 1)
+    }
+
+    pub async fn reap(&self, error: &str) -> Result<Vec<Reaped>, sqlx::Error> {
+        let rows = sqlx::query(
+            "UPDATE jobs SET \
+               status = CASE WHEN expiries = 0 THEN 'queued' ELSE 'failed' END, \
+               error = CASE WHEN expiries = 0 THEN NULL ELSE ?1 END, \
+               finished_at = CASE WHEN expiries = 0 THEN NULL ELSE ?2 END, \
+               started_at = CASE WHEN expiries = 0 THEN NULL ELSE started_at END, \
+               progress = CASE WHEN expiries = 0 THEN 0 ELSE progress END, \
+               worker = NULL, lease_until = NULL, expiries = expiries + 1 \
+             WHERE status = 'running' AND lease_until < ?2 \
+             RETURNING id, status",
+        )
+        .bind(error)
+        .bind(now_ms())
+        .fetch_all(&self.pool)
+        .await?;
+        rows.iter()
+            .map(|r| {
+                Ok(Reaped {
+                    id: r.try_get("id")?,
+                    requeued: r.try_get::<&str, _>("status")? == "queued",
+                })
+            })
+            .collect()
+    }
+
+    pub async fn purge(&self) -> Result<u64, sqlx::Error> {
+        let old = sqlx::query("DELETE FROM jobs WHERE finished_at < ?1")
+            .bind(now_ms() - ms(self.retention.age))
+            .execute(&self.pool)
+            .await?
+            .rows_affected();
+        let beyond = sqlx::query(
+            "DELETE FROM jobs WHERE id IN (SELECT id FROM ( \
+               SELECT id, row_number() OVER w AS n, sum(result_bytes) OVER w AS bytes \
+               FROM jobs WHERE finished_at IS NOT NULL \
+               WINDOW w AS (ORDER BY finished_at DESC, id DESC)) \
+             WHERE n > ?1 OR bytes > ?2)",
+        )
+        .bind(self.retention.max_finished as i64)
+        .bind(self.retention.max_bytes.min(i64::MAX as u64) as i64)
+        .execute(&self.pool)
+        .await?
+        .rows_affected();
+        Ok(old + beyond)
+    }
+
+    pub async fn chunk(&self, id: &str, seq: i64) -> Result<Option<Vec<u8>>, sqlx::Error> {
+        sqlx::query_scalar("SELECT data FROM job_chunks WHERE job_id = ?1 AND seq = ?2")
+            .bind(id)
+            .bind(seq)
+            .fetch_optional(&self.pool)
+            .await
+    }
+
+    pub async fn queued(&self) -> Result<i64, sqlx::Error> {
+        sqlx::query_scalar("SELECT count(*) FROM jobs WHERE status = 'queued'")
+            .fetch_one(&self.pool)
+            .await
+    }
+
+    pub async fn stats(&self) -> Result<Stats, sqlx::Error> {
+        let rows = sqlx::query(
+            "SELECT status, count(*) AS n, coalesce(sum(result_bytes), 0) AS bytes \
+             FROM jobs GROUP BY status",
+        )
+        .fetch_all(&self.pool)
+        .await?;
+        let mut s = Stats::default();
+        for r in &rows {
+            s.counts
+                .push((parse_status(r.try_get("status")?)?, r.try_get("n")?));
+            s.result_bytes += r.try_get::<i64, _>("bytes")?;
+        }
+        Ok(s)
+    }
+}
