@@ -291,21 +291,24 @@ fn split(m: &StateModel, vectors: &linalg::CMat, j: usize) -> (Vec<c64>, Vec<c64
     (x, y)
 }
 
-/// Unit norm, largest component real and positive: a shape comparable across speeds.
+/// Unit norm, largest component real and positive: a shape comparable across speeds. Scaled by
+/// the largest component first, so that no norm over- or underflows.
 fn normalise(mut x: Vec<c64>) -> Vec<c64> {
-    let norm = x.iter().map(|v| v.norm_sqr()).sum::<f64>().sqrt();
     let big = x
         .iter()
         .cloned()
         .max_by(|a, b| a.norm().total_cmp(&b.norm()));
-    if let Some(big) = big
-        && norm > 0.0
-        && big.norm() > 0.0
-    {
-        let phase = big.conj() / big.norm();
-        for v in x.iter_mut() {
-            *v = *v * phase / norm;
-        }
+    let Some(big) = big.filter(|b| b.norm() > 0.0 && b.norm().is_finite()) else {
+        return x;
+    };
+    let phase = big.conj() / big.norm();
+    let scale = big.norm();
+    for v in x.iter_mut() {
+        *v = *v * phase / scale;
+    }
+    let norm = x.iter().map(|v| v.norm_sqr()).sum::<f64>().sqrt();
+    for v in x.iter_mut() {
+        *v /= norm;
     }
     x
 }

@@ -77,6 +77,9 @@ pub fn eigen(a: &CMat) -> Result<Eigen, LinalgError> {
     }
     let u = e.U();
     let mut vectors = CMat::from_fn(n, n, |i, j| u[(i, j)] * d[i]);
+    if !all_finite_c(&vectors) {
+        return Err(LinalgError::NonFinite);
+    }
     // Back to unit norm, as the unbalanced solver gives them.
     for j in 0..n {
         let norm = (0..n)

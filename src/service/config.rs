@@ -220,11 +220,20 @@ impl Default for Config {
             write_timeout: Duration::from_secs(30),
             max_connections: 1024,
             log_json: false,
-            data_dir: "./data".into(),
+            // A fresh directory per configuration built in code (tests, embedding); the binary
+            // reads WHIRL_DATA_DIR, `./data` by default (see `from_lookup`).
+            data_dir: scratch_dir(),
             database_url: None,
             job_lease: Duration::from_secs(15),
         }
     }
+}
+
+/// A directory of its own under the system's temporary directory.
+fn scratch_dir() -> std::path::PathBuf {
+    static NEXT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+    let n = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    std::env::temp_dir().join(format!("whirl-{}-{n}", std::process::id()))
 }
 
 /// Half of what this process may use: the cgroup's memory limit if it has one (a container),
@@ -387,7 +396,7 @@ impl Config {
             write_timeout: seconds(&get, "WHIRL_WRITE_TIMEOUT", d.write_timeout, 0.1)?,
             max_connections: num(&get, "WHIRL_MAX_CONNECTIONS", d.max_connections, 1)?,
             log_json,
-            data_dir: get("WHIRL_DATA_DIR").map_or(d.data_dir, Into::into),
+            data_dir: get("WHIRL_DATA_DIR").map_or_else(|| "./data".into(), Into::into),
             database_url,
             job_lease: seconds(&get, "WHIRL_JOB_LEASE", d.job_lease, 1.0)?,
         })
