@@ -4,7 +4,10 @@
 //! (a) the 100-element compressor, 100 speeds, branches below 6000 rad/s;
 //! (b) Example 1 with nonviscous damping, 400 speeds;
 //! (c) 1 s of time response of the compressor at constant speed, and during a run-up (`runup`);
-//! (d) one modal solve of the compressor.
+//! (d) one modal solve of the compressor;
+//! (e) the cost of doubled coordinates: the compressor on its isotropic bearings, on the same
+//!     bearings in the general form (still isotropic: solved in `n` dof), and on anisotropic,
+//!     cross-coupled ones (`(r, conj r)`: `2n` dof).
 
 use std::time::{Duration, Instant};
 
@@ -12,7 +15,7 @@ use serde_json::Value;
 use whirl::analysis::campbell::{campbell, campbell_below};
 use whirl::analysis::control::Control;
 use whirl::analysis::poles::poles_at;
-use whirl::analysis::time::{SpeedLaw, TimeSpec, time_response};
+use whirl::analysis::time::{SpeedLaw, TimeSpec, reduced, time_response};
 use whirl::damping::DampedModel;
 use whirl::linalg;
 use whirl::model::api::{DampingInput, RotorInput};
@@ -29,12 +32,33 @@ fn example(name: &str) -> Value {
 
 /// The compressor example's rotor, Guyan-reduced to its translations as in the example or not.
 fn compressor(guyan: bool) -> RotorSystem {
+    compressor_on(guyan, |s| s)
+}
+
+/// The compressor with each support rewritten by `support`.
+fn compressor_on(guyan: bool, support: impl Fn(Value) -> Value) -> RotorSystem {
     let mut v = example("compressor-nvd.campbell.json")["rotor"].clone();
     if !guyan {
         v.as_object_mut().unwrap().remove("reduction");
     }
+    let supports: Vec<Value> = v["supports"].as_array().unwrap().clone();
+    v["supports"] = Value::Array(supports.into_iter().map(support).collect());
     let rotor: RotorInput = serde_json::from_value(v).unwrap();
     RotorSystem::assemble(&Rotor::parse(&rotor, &Limits::default()).unwrap()).unwrap()
+}
+
+/// An isotropic support `{node, stiffness, damping, loss_factor}` in the general form,
+/// scaled in y by `ky` and `cy` and cross-coupled by `q` (kxy = q k, kyx = -q k / 2).
+fn general(s: Value, ky: f64, cy: f64, q: f64) -> Value {
+    let (k, c) = (
+        s["stiffness"].as_f64().unwrap(),
+        s["damping"].as_f64().unwrap_or(0.0),
+    );
+    serde_json::json!({
+        "node": s["node"], "loss_factor": s["loss_factor"].as_f64().unwrap_or(0.0),
+        "kxx": k, "kyy": ky * k, "kxy": q * k, "kyx": -0.5 * q * k,
+        "cxx": c, "cyy": cy * c,
+    })
 }
 
 fn load(name: &str) -> (RotorSystem, DampingModel) {
@@ -194,6 +218,7 @@ fn main() {
         nodes: vec![10, 45, 90],
         tolerance: 1e-6,
         max_steps: 5_000_000,
+        reduce: false,
     };
     if wanted("c") {
         for guyan in [true, false] {
@@ -213,8 +238,9 @@ fn main() {
         }
     }
     if std::env::args().any(|a| a == "runup") {
-        let system = compressor(true);
-        let m = DampedModel::build(&system, &DampingModel::Viscous).unwrap();
+        // The compressor unreduced (202 dof), 0 to 1500 rad/s in 1 s through both of its
+        // first critical speeds, on the checked modal reduction and on the full model.
+        let system = compressor(false);
         let profile = Pwl::parse(
             &[[0.0, 0.0], [1.0, 1500.0]],
             "p",
@@ -222,16 +248,36 @@ fn main() {
             &mut Invalid::default(),
         )
         .unwrap();
-        let run_up = spec(SpeedLaw::Profile(profile));
-        let t0 = Instant::now();
-        let r = time_response(&system, &m, &run_up, false, &Control::default()).unwrap();
-        println!(
-            "(c) compressor ({} dof) time response, run-up 0 to 1500 rad/s in 1 s: {:.3} s ({} TR-BDF2 steps of {} states)",
-            system.n(),
-            t0.elapsed().as_secs_f64(),
-            r.steps,
-            m.states()
-        );
+        let run_up = TimeSpec {
+            reduce: true,
+            ..spec(SpeedLaw::Profile(profile))
+        };
+        for name in ["viscous", "equivalent", "nonviscous"] {
+            let input: DampingInput =
+                serde_json::from_value(serde_json::json!({"model": name})).unwrap();
+            let model = DampingModel::parse(&input, Some(system.n())).unwrap();
+            let mut out = None;
+            let t = best(3, || {
+                let m = DampedModel::build(&system, &model).unwrap();
+                out = Some(
+                    reduced::solve(&system, &model, &m, &run_up, true, &Control::default())
+                        .unwrap(),
+                );
+            });
+            let (r, info) = out.unwrap();
+            let info = info.map_or("none".into(), |i| {
+                format!(
+                    "{} of {} states, {} modes, checked {:.1e}",
+                    i.states, i.full_states, i.modes, i.max_relative_error
+                )
+            });
+            println!(
+                "(c) compressor ({} dof) run-up 0 to 1500 rad/s in 1 s, {name}: {:.3} s ({} TR-BDF2 steps; reduction: {info})",
+                system.n(),
+                t.as_secs_f64(),
+                r.steps,
+            );
+        }
     }
 
     // (d) One modal solve of the compressor (all poles, values and vectors).
@@ -245,6 +291,61 @@ fn main() {
             println!(
                 "(d) compressor ({} dof) modal solve: {:.4} s ({} states, eigenvalues and vectors, balanced)",
                 system.n(),
+                t.as_secs_f64(),
+                m.states()
+            );
+        }
+    }
+
+    // (e) Doubled coordinates: what anisotropy costs. The compressor (Guyan), 100 speeds,
+    // branches below 6000 rad/s, and one modal solve.
+    if wanted("e") {
+        let speeds: Vec<f64> = (0..100).map(|i| i as f64 * 1500.0 / 99.0).collect();
+        let cases: [(&str, RotorSystem); 3] = [
+            ("isotropic", compressor(true)),
+            (
+                "general form, isotropic",
+                compressor_on(true, |s| general(s, 1.0, 1.0, 0.0)),
+            ),
+            (
+                "anisotropic, cross-coupled",
+                compressor_on(true, |s| general(s, 1.5, 1.3, 0.2)),
+            ),
+        ];
+        for (name, system) in &cases {
+            for (model_name, model, reduce) in [
+                ("viscous, full model", DampingModel::Viscous, false),
+                ("viscous", DampingModel::Viscous, true),
+                ("hysteretic", DampingModel::Hysteretic, true),
+            ] {
+                let mut out = None;
+                let t = best(3, || {
+                    let full = DampedModel::build(system, &model).unwrap();
+                    let c = campbell_below(
+                        system,
+                        &model,
+                        &full,
+                        &speeds,
+                        6000.0,
+                        reduce,
+                        &Control::default(),
+                    )
+                    .unwrap();
+                    out = Some((full.states(), c.reduction.map(|r| r.states)));
+                });
+                let (states, reduced_states) = out.unwrap();
+                println!(
+                    "(e) compressor on {name} supports, Campbell {model_name}: {:.3} s for 100 speeds \
+                     ({states} states, reduced to {reduced_states:?})",
+                    t.as_secs_f64()
+                );
+            }
+            let m = DampedModel::build(system, &DampingModel::Viscous).unwrap();
+            let t = best(5, || {
+                poles_at(&m, 1000.0).unwrap();
+            });
+            println!(
+                "(e) compressor on {name} supports, modal solve: {:.4} s ({} states)",
                 t.as_secs_f64(),
                 m.states()
             );

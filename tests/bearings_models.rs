@@ -157,6 +157,7 @@ fn spec(
         nodes,
         tolerance: 1e-8,
         max_steps: 2_000_000,
+        reduce: false,
     }
 }
 

@@ -63,6 +63,7 @@ fn spec(
         nodes,
         tolerance: 1e-6,
         max_steps: 5_000_000,
+        reduce: false,
     }
 }
 

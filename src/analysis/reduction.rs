@@ -7,7 +7,9 @@
 //! and each eigenproblem by `((2n + p) / (2m + p))^3`.
 //!
 //! The basis is the modes with `w_k <= 2 w_b` (at least 4) and their static corrections
-//! ([`ModalBasis::augmented`]); the band widens by half until the check passes: at the
+//! ([`ModalBasis::augmented`]), plus the static responses to unit loads where supports and
+//! nonrotating dampers act (heavily damped supports pin the damped modes there, which free
+//! modes span poorly) and, for a time response, where the loads act; the band widens by half until the check passes: at the
 //! fastest speed of the sweep (where the gyroscopic coupling of the neglected modes is
 //! largest) every full-model eigenvalue in the box `|Re s|, |Im s| <= w_b` has a reduced one
 //! within [`TOLERANCE`] relative, and the other way round. The measured error is reported.
@@ -18,12 +20,29 @@
 
 use super::AnalysisError;
 use crate::damping::{DampedModel, ModelKind};
+use crate::fem::modal::ModalBasis;
 use crate::linalg::{self, LinalgError, c64};
 use crate::model::damping::DampingModel;
 use crate::system::RotorSystem;
 
-/// Largest relative eigenvalue change allowed by the reduction, at the check speed.
+/// Largest relative eigenvalue change allowed by the reduction of a sweep, at the check speed.
 pub const TOLERANCE: f64 = 1e-6;
+
+/// Largest change of a pole relative to its decay rate (or to a thousandth of its modulus,
+/// if larger) allowed by the reduction of a time response: a forced response near a pole
+/// moves by about that fraction. The state matrix of a full model itself carries round-off
+/// of `eps w_max^2` relative to its poles (4e-6 for heavily damped poles of a 100-element
+/// shaft whose rotations reach 1e6 rad/s), below which no relative check can pass.
+pub const RESPONSE_TOLERANCE: f64 = 1e-3;
+
+/// How a reduced model is compared with the full one.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Criterion {
+    /// `|s - s_full| / |s_full|` (sweeps: what the Campbell diagram shows).
+    Relative(f64),
+    /// `|s - s_full| / max(|Re s_full|, 1e-3 |s_full|)` (time responses).
+    Response(f64),
+}
 
 /// How a sweep was reduced.
 #[derive(Debug, Clone, PartialEq)]
@@ -53,10 +72,47 @@ pub fn reduce_for_sweep(
     speeds: &[f64],
     bound: f64,
 ) -> Result<Option<(DampedModel, Reduction)>, AnalysisError> {
+    let checked_speed = speeds
+        .iter()
+        .cloned()
+        .fold(0.0, |a: f64, b| if b.abs() > a.abs() { b } else { a });
+    if speeds.is_empty() {
+        return Ok(None);
+    }
+    Ok(reduce(
+        system,
+        damping,
+        full,
+        checked_speed,
+        bound,
+        &[],
+        Criterion::Relative(TOLERANCE),
+    )?
+    .map(|r| (r.model, r.info)))
+}
+
+/// A checked reduction: the model, its basis (`q = phi eta`) and what was checked.
+pub struct Reduced {
+    pub model: DampedModel,
+    pub basis: ModalBasis,
+    pub info: Reduction,
+}
+
+/// The lowest undamped modes with `w <= 2 bound` (at least 4), their static corrections and
+/// those of unit loads on `loads`, widened until every full-model pole in the box
+/// `|Re s|, |Im s| <= bound` at `checked_speed` is reproduced within [`TOLERANCE`] (and the
+/// other way round); `None` if no such basis at least halves the state.
+pub fn reduce(
+    system: &RotorSystem,
+    damping: &DampingModel,
+    full: &DampedModel,
+    checked_speed: f64,
+    bound: f64,
+    loads: &[usize],
+    criterion: Criterion,
+) -> Result<Option<Reduced>, AnalysisError> {
     let n = system.n();
-    // Supports in the general form are not carried into modal coordinates (yet): such rotors
-    // are solved in full.
-    if !bound.is_finite() || speeds.is_empty() || !system.supports.is_empty() {
+    if !bound.is_finite() {
         return Ok(None);
     }
     let basis = &full.basis;
@@ -66,10 +122,22 @@ pub fn reduce_for_sweep(
         .filter(|&&w| w <= 2.0 * bound)
         .count()
         .max(4);
-    let checked_speed = speeds
-        .iter()
-        .cloned()
-        .fold(0.0, |a: f64, b| if b.abs() > a.abs() { b } else { a });
+    // The static response to a unit load where the supports act: with heavy support damping
+    // the damped modes pivot about the supports, which the free modes alone span poorly; for
+    // supports in the general form it also spans their anisotropy and cross-coupling.
+    let mut loads = loads.to_vec();
+    for p in &system.supports {
+        loads.extend(p.at.weights().iter().map(|&(d, _)| d));
+    }
+    for d in 0..n {
+        let at = |a: &crate::linalg::RMat| (0..n).any(|j| a[(d, j)] != 0.0);
+        if at(&system.damping_nonrotating) || at(&system.hysteretic_nonrotating) {
+            loads.push(d);
+        }
+    }
+    loads.sort_unstable();
+    loads.dedup();
+    let loads = &loads[..];
     let inside = |v: &[c64]| -> Vec<c64> {
         v.iter()
             .cloned()
@@ -79,7 +147,7 @@ pub fn reduce_for_sweep(
     let mut exact: Option<Vec<c64>> = None;
     while m < n {
         // A basis or model that cannot be built only means no reduction: solve the full one.
-        let Ok(sub) = basis.augmented(system, m) else {
+        let Ok(sub) = basis.augmented_with(system, m, loads) else {
             break;
         };
         let Ok(model) = DampedModel::build(&sub.reduce(system), damping) else {
@@ -90,43 +158,79 @@ pub fn reduce_for_sweep(
         }
         let exact = match &exact {
             Some(e) => e,
-            None => exact.insert(eigenvalues_at(full, checked_speed)?),
+            None => exact.insert(compared_at(full, checked_speed, criterion)?),
         };
-        let Ok(approx) = eigenvalues_at(&model, checked_speed) else {
+        let Ok(approx) = compared_at(&model, checked_speed, criterion) else {
             break;
         };
-        let error = distance(&inside(exact), &approx).max(distance(&inside(&approx), exact));
-        if error <= TOLERANCE {
+        let error = distance(&inside(exact), &approx, criterion).max(distance(
+            &inside(&approx),
+            exact,
+            criterion,
+        ));
+        let tolerance = match criterion {
+            Criterion::Relative(t) | Criterion::Response(t) => t,
+        };
+        if error <= tolerance {
             let states = model.states();
-            return Ok(Some((
+            let info = Reduction {
+                modes: m,
+                vectors: sub.len(),
+                states,
+                full_states: full.states(),
+                band: basis.omega[m - 1],
+                checked_speed,
+                max_relative_error: error,
+            };
+            return Ok(Some(Reduced {
                 model,
-                Reduction {
-                    modes: m,
-                    vectors: sub.len(),
-                    states,
-                    full_states: full.states(),
-                    band: basis.omega[m - 1],
-                    checked_speed,
-                    max_relative_error: error,
-                },
-            )));
+                basis: sub,
+                info,
+            }));
         }
         m = (3 * m).div_ceil(2);
     }
     Ok(None)
 }
 
-/// Largest relative distance from a value in `from` to the nearest in `to`.
-fn distance(from: &[c64], to: &[c64]) -> f64 {
+/// Largest distance from a value in `from` to the nearest in `to`, as `criterion` measures it.
+fn distance(from: &[c64], to: &[c64], criterion: Criterion) -> f64 {
     from.iter()
         .map(|s| {
             let nearest = to
                 .iter()
                 .map(|t| (s - t).norm())
                 .fold(f64::INFINITY, f64::min);
-            nearest / s.norm().max(f64::MIN_POSITIVE)
+            let scale = match criterion {
+                Criterion::Relative(_) => s.norm(),
+                Criterion::Response(_) => s.re.abs().max(1e-3 * s.norm()),
+            };
+            nearest / scale.max(f64::MIN_POSITIVE)
         })
         .fold(0.0, f64::max)
+}
+
+/// The poles compared at `speed`: every eigenvalue for a sweep; for a time response of a
+/// model with internal coordinates, its rotor poles only. The full model's Maxwell branches
+/// sit on every mode, and those of modes far above the band relax within it (a branch
+/// centred on `w_k` has a rate `w_k / 10`); a reduction carries those modes quasi-statically
+/// through its static corrections, so their internal poles have no counterpart, while their
+/// effect on the rotor poles is compared.
+fn compared_at(
+    model: &DampedModel,
+    speed: f64,
+    criterion: Criterion,
+) -> Result<Vec<c64>, LinalgError> {
+    match (&model.kind, criterion) {
+        (ModelKind::Linear(m), Criterion::Response(_)) if m.p() > 0 => {
+            Ok(super::poles::poles_at(model, speed)?
+                .rotor
+                .iter()
+                .map(|p| p.s)
+                .collect())
+        }
+        _ => eigenvalues_at(model, speed),
+    }
 }
 
 /// Every eigenvalue of the model at `speed` (for the hysteretic model, the consistent roots).

@@ -29,7 +29,7 @@ pub enum Outcome {
         matrices: Box<ModelMatrices>,
         model: &'static str,
     },
-    Time(TimeResult),
+    Time(TimeResult, Option<crate::analysis::reduction::Reduction>),
     Unbalance {
         speeds: Vec<f64>,
         nodes: Vec<usize>,
@@ -163,9 +163,9 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
         }
         TaskKind::Time { model, spec } => {
             let (system, damped) = build(model)?;
-            Ok(Outcome::Time(time::time_response(
-                &system, &damped, spec, false, control,
-            )?))
+            let (r, reduction) =
+                time::reduced::solve(&system, &model.damping, &damped, spec, spec.reduce, control)?;
+            Ok(Outcome::Time(r, reduction))
         }
         TaskKind::Unbalance {
             model,

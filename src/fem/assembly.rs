@@ -11,7 +11,7 @@ use super::guyan;
 use crate::linalg::{LinalgError, RMat};
 use crate::model::api::GuyanKeep;
 use crate::model::rotor::{BeamRotor, MatrixRotor, ShaftElement};
-use crate::system::{Dof, DofKind, PlacedSupport, RotorSystem};
+use crate::system::{Dof, DofKind, PlacedSupport, Placement, RotorSystem};
 
 /// The section of an element, with Cowper's shear factor where none was given.
 pub fn section(e: &ShaftElement) -> Section {
@@ -90,9 +90,10 @@ pub fn beam(rotor: &BeamRotor) -> Result<RotorSystem, LinalgError> {
         .general_supports()
         .iter()
         .map(|g| PlacedSupport {
-            dof: s
-                .translation(g.node)
-                .expect("validated: every node has a translation"),
+            at: Placement::Dof(
+                s.translation(g.node)
+                    .expect("validated: every node has a translation"),
+            ),
             support: g.clone(),
         })
         .collect();
@@ -122,7 +123,7 @@ pub fn matrices(m: &MatrixRotor) -> RotorSystem {
             .general_supports
             .iter()
             .map(|g| PlacedSupport {
-                dof: g.node,
+                at: Placement::Dof(g.node),
                 support: g.clone(),
             })
             .collect(),

@@ -41,10 +41,14 @@ pub fn reduce(system: &RotorSystem, keep: &[bool]) -> Result<RotorSystem, Linalg
             .supports
             .iter()
             .filter_map(|p| {
+                // Supports are placed after the Guyan reduction (see `fem::assembly`).
+                let crate::system::Placement::Dof(d) = p.at else {
+                    return None;
+                };
                 kept.iter()
-                    .position(|&i| i == p.dof)
+                    .position(|&i| i == d)
                     .map(|dof| crate::system::PlacedSupport {
-                        dof,
+                        at: crate::system::Placement::Dof(dof),
                         support: p.support.clone(),
                     })
             })

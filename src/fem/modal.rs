@@ -5,7 +5,7 @@
 //! kept; so one formula serves the full and the reduced mode sets (paper eq. 7 and after).
 
 use crate::linalg::{self, CMat, LinalgError, RMat};
-use crate::system::{Dof, DofKind, Layout, Realized, RotorSystem};
+use crate::system::{Dof, DofKind, Layout, PlacedSupport, Placement, Realized, RotorSystem};
 
 /// Mass-normalised undamped modes of the nonrotating rotor, lowest first.
 #[derive(Debug, Clone)]
@@ -45,13 +45,7 @@ impl ModalBasis {
     /// with the symmetric parts of their coefficients at rest, averaged over the directions:
     /// these are the rotor's own axisymmetric modes, the basis of its rotating damping.
     pub fn of(system: &RotorSystem) -> Result<Self, ModalError> {
-        let (k, m) = if system.supports.is_empty() {
-            (system.stiffness(), system.mass.clone())
-        } else {
-            let (k, m) = Realized::undamped(system, Layout::Single);
-            let re = |a: &CMat| RMat::from_fn(a.nrows(), a.ncols(), |i, j| a[(i, j)].re);
-            (re(&k), re(&m))
-        };
+        let (k, m) = pencil(system);
         let modes = linalg::symmetric_modes(&k, &m).map_err(ModalError::Linalg)?;
         // A rigid-body mode has w^2 ~ 0 relative to the largest; equivalent and nonviscous
         // damping divide by w, so refuse it here rather than produce infinities.
@@ -103,10 +97,22 @@ impl ModalBasis {
     /// the same 8 modes. The result is M-orthonormal and K-diagonal, and its lowest modes are
     /// the exact ones (a Ritz pair that is an eigenpair is reproduced).
     pub fn augmented(&self, system: &RotorSystem, count: usize) -> Result<Self, ModalError> {
+        self.augmented_with(system, count, &[])
+    }
+
+    /// [`ModalBasis::augmented`] with the static responses to unit loads on the `loads` dofs
+    /// added too: a force applied there (unbalance, a support's force) is then represented
+    /// exactly at zero frequency, not only through the kept modes.
+    pub fn augmented_with(
+        &self,
+        system: &RotorSystem,
+        count: usize,
+        loads: &[usize],
+    ) -> Result<Self, ModalError> {
         let kept = self.truncated(count);
         let n = system.n();
-        let m = &system.mass;
-        let k = system.stiffness();
+        let (k, m) = pencil(system);
+        let m = &m;
         let couplings: Vec<&RMat> = [
             &system.gyroscopic,
             &system.damping_rotating,
@@ -117,7 +123,8 @@ impl ModalBasis {
         .into_iter()
         .filter(|a| (0..n).any(|j| (0..n).any(|i| a[(i, j)] != 0.0)))
         .collect();
-        let mut f = RMat::zeros(n, couplings.len() * kept.len());
+        let coupled = couplings.len() * kept.len();
+        let mut f = RMat::zeros(n, coupled + loads.len());
         for (b, a) in couplings.iter().enumerate() {
             let block = *a * &kept.phi;
             for j in 0..kept.len() {
@@ -125,6 +132,9 @@ impl ModalBasis {
                     f[(i, b * kept.len() + j)] = block[(i, j)];
                 }
             }
+        }
+        for (j, &d) in loads.iter().enumerate() {
+            f[(d, coupled + j)] = 1.0;
         }
         let x = linalg::solve_real_matrix(&k, &f).map_err(ModalError::Linalg)?;
         // K v is tracked beside every basis vector v, never formed as K times v: for a low mode
@@ -223,6 +233,17 @@ impl HermitianBasis {
     }
 }
 
+/// `(K, M)` of the rotor's axisymmetric modes: supports in the general form count with the
+/// symmetric parts of their coefficients at rest, averaged over the directions.
+fn pencil(system: &RotorSystem) -> (RMat, RMat) {
+    if system.supports.is_empty() {
+        (system.stiffness(), system.mass.clone())
+    } else {
+        let (ks, ms) = system.supports_at_rest();
+        (&system.stiffness() + &ks, &system.mass + &ms)
+    }
+}
+
 /// `sqrt(v^T M v)`.
 fn mass_norm(m: &RMat, v: &[f64]) -> f64 {
     let n = v.len();
@@ -242,9 +263,18 @@ impl ModalBasis {
     /// The total stiffness is `diag(w^2)` by construction; it is set so rather than projected,
     /// which would cancel (see [`ModalBasis::augmented`]). The supports' part is projected
     /// (it is local and does not cancel) and the shaft's is the difference.
+    ///
+    /// Supports in the general form stay general, on the rows of `Phi` at their translations
+    /// ([`Placement::Shape`]); the modes are those of the rotor with their averaged
+    /// stiffness and mass at rest ([`ModalBasis::of`]), which the reduced matrices leave out
+    /// so that the supports count once.
     pub fn reduce(&self, system: &RotorSystem) -> RotorSystem {
         let nonrotating = self.project(&system.stiffness_nonrotating);
         let m = self.len();
+        let averaged = (!system.supports.is_empty()).then(|| {
+            let (k, _) = system.supports_at_rest();
+            self.project(&k)
+        });
         RotorSystem {
             mass: self.project(&system.mass),
             gyroscopic: self.project(&system.gyroscopic),
@@ -254,7 +284,8 @@ impl ModalBasis {
                 } else {
                     0.0
                 };
-                total - nonrotating[(i, j)]
+                let supports = averaged.as_ref().map_or(0.0, |a| a[(i, j)]);
+                total - supports - nonrotating[(i, j)]
             }),
             stiffness_nonrotating: nonrotating,
             damping_rotating: self.project(&system.damping_rotating),
@@ -267,9 +298,23 @@ impl ModalBasis {
                     kind: DofKind::Mode,
                 })
                 .collect(),
-            // Only rotors without general supports are reduced (see `analysis::reduction`).
-            supports: vec![],
+            supports: system
+                .supports
+                .iter()
+                .map(|p| PlacedSupport {
+                    at: Placement::Shape(self.shape_of(&p.at)),
+                    support: p.support.clone(),
+                })
+                .collect(),
         }
+    }
+
+    /// `Phi^T w`: a combination of the coordinates in modal ones.
+    fn shape_of(&self, at: &Placement) -> Vec<f64> {
+        let w = at.weights();
+        (0..self.len())
+            .map(|k| w.iter().map(|&(i, a)| a * self.phi[(i, k)]).sum())
+            .collect()
     }
 
     /// `M Phi`: its columns map physical coordinates to modal ones (`eta = (M Phi)^T q`).

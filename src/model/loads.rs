@@ -250,6 +250,8 @@ pub struct TimeSpec {
     pub tolerance: f64,
     /// Most implicit steps.
     pub max_steps: usize,
+    /// Whether a varying speed may be integrated on a checked modal reduction.
+    pub reduce: bool,
 }
 
 impl TimeSpec {

@@ -611,6 +611,7 @@ impl TimeResponseRequest {
             nodes: out,
             tolerance: tolerance.expect("validated"),
             max_steps: limits.max_steps,
+            reduce: self.modal_reduction.unwrap_or(true),
         };
         let size = model.size();
         let (s, n) = (size.states() as u64, size.dofs as u64);

@@ -100,15 +100,19 @@ pub fn campbell(r: &CampbellResult) -> api::CampbellResponse {
             .collect(),
         critical_speeds: r.critical_speeds.clone(),
         threshold: r.threshold.as_ref().map(|t| t.speed),
-        reduction: r.reduction.as_ref().map(|d| api::ReductionInfo {
-            modes: d.modes,
-            vectors: d.vectors,
-            band: d.band,
-            states: d.states,
-            full_states: d.full_states,
-            checked_speed: d.checked_speed,
-            max_relative_error: d.max_relative_error,
-        }),
+        reduction: r.reduction.as_ref().map(reduction),
+    }
+}
+
+pub fn reduction(d: &crate::analysis::reduction::Reduction) -> api::ReductionInfo {
+    api::ReductionInfo {
+        modes: d.modes,
+        vectors: d.vectors,
+        band: d.band,
+        states: d.states,
+        full_states: d.full_states,
+        checked_speed: d.checked_speed,
+        max_relative_error: d.max_relative_error,
     }
 }
 
@@ -321,6 +325,7 @@ pub fn time_response(r: &TimeResult) -> api::TimeResponseResponse {
         .into(),
         steps: r.steps,
         states: r.states,
+        reduction: None,
     }
 }
 

@@ -49,7 +49,11 @@ impl From<Outcome> for Output {
             Outcome::Damping { matrices, model } => {
                 Output::Damping(Box::new(convert::damping_matrices(&matrices, model)))
             }
-            Outcome::Time(r) => Output::Time(convert::time_response(&r)),
+            Outcome::Time(r, reduction) => {
+                let mut t = convert::time_response(&r);
+                t.reduction = reduction.as_ref().map(convert::reduction);
+                Output::Time(t)
+            }
             Outcome::Unbalance {
                 speeds,
                 nodes,

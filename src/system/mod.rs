@@ -65,11 +65,36 @@ pub struct RotorSystem {
     pub supports: Vec<PlacedSupport>,
 }
 
-/// A general support and the degree of freedom it acts on.
+/// A general support and the coordinates it acts on.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PlacedSupport {
-    pub dof: usize,
+    pub at: Placement,
     pub support: GeneralSupport,
+}
+
+/// Where a support's translation `u` is in the coordinates `q` of a system.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Placement {
+    /// `u = q[d]`: a degree of freedom of an assembled rotor.
+    Dof(usize),
+    /// `u = w^T q`: in modal coordinates `q = Phi eta` the row of `Phi` at the translation
+    /// (real, so `conj u` is `w^T conj q` in doubled coordinates).
+    Shape(Vec<f64>),
+}
+
+impl Placement {
+    /// `(coordinate, weight)` pairs whose sum is the support's translation.
+    pub fn weights(&self) -> Vec<(usize, f64)> {
+        match self {
+            Placement::Dof(d) => vec![(*d, 1.0)],
+            Placement::Shape(w) => w
+                .iter()
+                .enumerate()
+                .filter(|(_, a)| **a != 0.0)
+                .map(|(i, &a)| (i, a))
+                .collect(),
+        }
+    }
 }
 
 impl RotorSystem {
@@ -124,6 +149,25 @@ impl RotorSystem {
     /// Whether any support's coefficients change with the speed.
     pub fn speed_dependent(&self) -> bool {
         self.supports.iter().any(|s| !s.support.speeds().is_empty())
+    }
+
+    /// The supports' stiffness and mass at rest, symmetric parts averaged over the directions,
+    /// as real `n x n` matrices: what the axisymmetric modes of the rotor see of them.
+    pub fn supports_at_rest(&self) -> (RMat, RMat) {
+        let n = self.n();
+        let (mut k, mut m) = (RMat::zeros(n, n), RMat::zeros(n, n));
+        for p in &self.supports {
+            let c = p.support.at(0.0);
+            let (kk, mm) = (0.5 * (c.k.xx + c.k.yy), 0.5 * (c.m.xx + c.m.yy));
+            let w = p.at.weights();
+            for &(i, a) in &w {
+                for &(j, b) in &w {
+                    k[(i, j)] += kk * a * b;
+                    m[(i, j)] += mm * a * b;
+                }
+            }
+        }
+        (k, m)
     }
 
     /// The speeds at which a support's table has a point (sorted, deduplicated).

@@ -57,14 +57,19 @@ fn blocks(a: &RMat, layout: Layout) -> CMat {
     }
 }
 
-/// Adds a support coefficient matrix on translation `d`.
-fn add_support(target: &mut CMat, d: usize, n: usize, a: &Matrix2, layout: Layout) {
+/// Adds a support coefficient matrix on the translation `sum w_i q_i` (`weights`).
+fn add_support(target: &mut CMat, weights: &[(usize, f64)], n: usize, a: &Matrix2, layout: Layout) {
     let (iso, an) = a.complex();
-    target[(d, d)] += iso;
-    if layout == Layout::Doubled {
-        target[(d, n + d)] += an;
-        target[(n + d, d)] += an.conj();
-        target[(n + d, n + d)] += iso.conj();
+    for &(i, wi) in weights {
+        for &(j, wj) in weights {
+            let w = wi * wj;
+            target[(i, j)] += iso * w;
+            if layout == Layout::Doubled {
+                target[(i, n + j)] += an * w;
+                target[(n + i, j)] += an.conj() * w;
+                target[(n + i, n + j)] += iso.conj() * w;
+            }
+        }
     }
 }
 
@@ -103,12 +108,12 @@ impl Realized {
         };
         for p in &system.supports {
             let c = coefficients(&p.support);
-            let d = p.dof;
-            add_support(&mut r.stiffness, d, n, &c.k, layout);
-            add_support(&mut r.damping_nonrotating, d, n, &c.c, layout);
-            add_support(&mut r.mass, d, n, &c.m, layout);
+            let d = p.at.weights();
+            add_support(&mut r.stiffness, &d, n, &c.k, layout);
+            add_support(&mut r.damping_nonrotating, &d, n, &c.c, layout);
+            add_support(&mut r.mass, &d, n, &c.m, layout);
             let loss = c.k.symmetric().scaled(p.support.loss_factor);
-            add_support(&mut r.loss_nonrotating, d, n, &loss, layout);
+            add_support(&mut r.loss_nonrotating, &d, n, &loss, layout);
         }
         r
     }
@@ -169,7 +174,7 @@ impl Realized {
 mod tests {
     use super::*;
     use crate::model::supports::{GeneralSupport, Law};
-    use crate::system::{Dof, DofKind, PlacedSupport};
+    use crate::system::{Dof, DofKind, PlacedSupport, Placement};
 
     fn one_dof(k: Matrix2) -> RotorSystem {
         let one = |v: f64| RMat::from_fn(1, 1, |_, _| v);
@@ -187,7 +192,7 @@ mod tests {
                 kind: DofKind::Translation,
             }],
             supports: vec![PlacedSupport {
-                dof: 0,
+                at: Placement::Dof(0),
                 support: GeneralSupport {
                     index: 0,
                     node: 0,

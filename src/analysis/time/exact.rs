@@ -8,7 +8,7 @@
 //! gives `e^{i Omega t0} tau e^{i Omega tau} phi1((lambda - i Omega) tau)`, which stays exact
 //! at resonance. The results are sampled at the output times; no time stepping at all.
 
-use super::{Forcing, Method, TimeError, TimeResult, TimeSpec, rows};
+use super::{Forcing, Method, TimeError, TimeResult, TimeSpec};
 use rayon::prelude::*;
 
 use crate::analysis::control::{Cancelled, Control};
@@ -48,25 +48,19 @@ pub fn solve(
     omega: f64,
     forcing: &Forcing,
     spec: &TimeSpec,
-    out: &[usize],
+    out: &[Vec<(usize, f64)>],
     control: &Control,
 ) -> Result<TimeResult, TimeError> {
     let e = linalg::eigen(&state.at(omega))?;
     let size = state.size();
     // One right-hand side per load: unit force in its direction; unit unbalance at its phase,
     // once per direction of whirl it drives (two in doubled coordinates).
-    let mut cols: Vec<Vec<c64>> = vec![];
-    for (f, &dof) in spec.forces.iter().zip(&forcing.force_dofs) {
-        cols.push(forcing.force_column(dof, f.direction));
-    }
+    let mut cols: Vec<Vec<c64>> = (0..spec.forces.len())
+        .map(|k| forcing.force_column(k))
+        .collect();
     let mut whirls: Vec<(usize, usize, f64)> = vec![];
-    for (u, (ub, &dof)) in spec
-        .unbalances
-        .iter()
-        .zip(&forcing.unbalance_dofs)
-        .enumerate()
-    {
-        for (col, sense) in forcing.unbalance_columns(dof, ub.phase) {
+    for u in 0..spec.unbalances.len() {
+        for (col, sense) in forcing.unbalance_columns(u) {
             whirls.push((u, cols.len(), sense));
             cols.push(col);
         }
@@ -97,10 +91,14 @@ pub fn solve(
                 .map(move |(tk, jump, dslope)| (fi, tk, jump, dslope))
         })
         .collect();
-    let out_rows = rows(state, out);
-    let vrows: Vec<Vec<c64>> = out_rows
+    let n = state.n();
+    let vrows: Vec<Vec<c64>> = out
         .iter()
-        .map(|&r| (0..size).map(|k| e.vectors[(r, k)]).collect())
+        .map(|w| {
+            (0..size)
+                .map(|k| w.iter().map(|&(d, a)| e.vectors[(n + d, k)] * a).sum())
+                .collect()
+        })
         .collect();
     let times = spec.output_times();
     let chunks: Vec<(usize, usize)> = (0..times.len())

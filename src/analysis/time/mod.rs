@@ -14,11 +14,11 @@
 
 pub mod exact;
 pub mod implicit;
+pub mod reduced;
 
 use super::control::{Cancelled, Control};
-use crate::damping::state::StateModel;
 use crate::damping::{DampedModel, ModelKind};
-use crate::linalg::{self, CMat, LinalgError, c64};
+use crate::linalg::{self, CMat, LinalgError, RMat, c64};
 pub use crate::model::loads::{SpeedLaw, TimeSpec};
 use crate::system::{DofKind, RotorSystem};
 use crate::system::{Layout, Realized};
@@ -91,14 +91,51 @@ impl From<LinalgError> for TimeError {
     }
 }
 
+/// The coordinates a time response is solved in, and how the physical ones map to them:
+/// the rotor's own (`q`), or a modal reduction `q = Phi eta` (loads projected by `Phi^T`,
+/// outputs recovered by `Phi`).
+pub struct Coordinates<'a> {
+    /// The system as assembled (its nodes and translations).
+    pub physical: &'a RotorSystem,
+    /// The system solved.
+    pub solved: &'a RotorSystem,
+    /// `Phi` when reduced.
+    pub basis: Option<&'a RMat>,
+    /// The state entries whose error the integrator controls (all when `None`).
+    pub slow: Option<Vec<bool>>,
+}
+
+impl Coordinates<'_> {
+    /// The shape of a unit load on a node's translation in the solved coordinates (before
+    /// `M^-1`; the `conj r` half is added by [`Forcing`]).
+    fn load(&self, node: usize) -> Vec<f64> {
+        let d = translation(self.physical, node);
+        match self.basis {
+            None => (0..self.solved.n())
+                .map(|i| if i == d { 1.0 } else { 0.0 })
+                .collect(),
+            Some(phi) => (0..phi.ncols()).map(|k| phi[(d, k)]).collect(),
+        }
+    }
+
+    /// Weights over the solved displacements that give a node's translation.
+    pub fn observe(&self, node: usize) -> Vec<(usize, f64)> {
+        let d = translation(self.physical, node);
+        match self.basis {
+            None => vec![(d, 1.0)],
+            Some(phi) => (0..phi.ncols()).map(|k| (k, phi[(d, k)])).collect(),
+        }
+    }
+}
+
 /// The loads as a right-hand side `b(t) = [M^-1 F(t); 0; 0]`. In doubled coordinates the
 /// `conj r` rows carry the conjugate loads: a force `F e^{i theta}` there is `F e^{-i theta}`,
 /// and an unbalance whirls the other way.
 pub struct Forcing<'a> {
     spec: &'a TimeSpec,
-    /// Degree of freedom of each force, then of each unbalance.
-    force_dofs: Vec<usize>,
-    unbalance_dofs: Vec<usize>,
+    /// Shape of each force, then of each unbalance, in the solved coordinates.
+    force_shapes: Vec<Vec<f64>>,
+    unbalance_shapes: Vec<Vec<f64>>,
     /// `M^-1`, `N x N`.
     m_inv: CMat,
     /// Rotor degrees of freedom `n` when doubled (`N = 2n`).
@@ -107,35 +144,39 @@ pub struct Forcing<'a> {
 }
 
 impl<'a> Forcing<'a> {
-    pub fn new(system: &RotorSystem, spec: &'a TimeSpec, size: usize) -> Result<Self, LinalgError> {
-        let r = Realized::at(system, spec.speed.omega(0.0));
+    pub fn new(c: &Coordinates, spec: &'a TimeSpec, size: usize) -> Result<Self, LinalgError> {
+        let r = Realized::at(c.solved, spec.speed.omega(0.0));
         let big = r.size();
         let identity = CMat::from_fn(big, big, |i, j| {
             c64::new(if i == j { 1.0 } else { 0.0 }, 0.0)
         });
         Ok(Forcing {
             spec,
-            force_dofs: spec
-                .forces
-                .iter()
-                .map(|f| translation(system, f.node))
-                .collect(),
-            unbalance_dofs: spec
-                .unbalances
-                .iter()
-                .map(|u| translation(system, u.node))
-                .collect(),
+            force_shapes: spec.forces.iter().map(|f| c.load(f.node)).collect(),
+            unbalance_shapes: spec.unbalances.iter().map(|u| c.load(u.node)).collect(),
             m_inv: linalg::mass_solve(&r.mass, &identity)?,
-            doubled: (r.layout == Layout::Doubled).then_some(system.n()),
+            doubled: (r.layout == Layout::Doubled).then_some(c.solved.n()),
             size,
         })
     }
 
-    /// `M^-1 f` for a load vector with a few nonzero entries.
-    fn apply_m_inv(&self, f: &[(usize, c64)]) -> Vec<c64> {
+    /// `M^-1 f` for the load `value` times `shape` (and its conjugate on `conj r`).
+    fn add_load(&self, shape: &[f64], value: c64, f: &mut [c64]) {
+        for (i, &w) in shape.iter().enumerate() {
+            if w != 0.0 {
+                f[i] += value * w;
+                if let Some(n) = self.doubled {
+                    f[n + i] += value.conj() * w;
+                }
+            }
+        }
+    }
+
+    /// `M^-1 f` over the state.
+    fn apply_m_inv(&self, f: &[c64]) -> Vec<c64> {
         let n = self.m_inv.nrows();
         let mut b = vec![c64::new(0.0, 0.0); self.size];
-        for &(j, fj) in f {
+        for (j, &fj) in f.iter().enumerate() {
             if fj.re != 0.0 || fj.im != 0.0 {
                 for (i, bi) in b.iter_mut().enumerate().take(n) {
                     *bi += self.m_inv[(i, j)] * fj;
@@ -145,53 +186,54 @@ impl<'a> Forcing<'a> {
         b
     }
 
-    /// A load `value` on the translation `dof` (and its conjugate on `conj r`).
-    fn load(&self, dof: usize, value: c64, out: &mut Vec<(usize, c64)>) {
-        out.push((dof, value));
-        if let Some(n) = self.doubled {
-            out.push((n + dof, value.conj()));
-        }
-    }
-
     /// `b(t)`; `left`: the limit just before `t` (at the end of a step landing on a jump).
     pub fn b(&self, t: f64, left: bool) -> Vec<c64> {
-        let mut f = vec![];
-        for (force, &dof) in self.spec.forces.iter().zip(&self.force_dofs) {
+        let mut f = vec![c64::new(0.0, 0.0); self.m_inv.nrows()];
+        for (force, shape) in self.spec.forces.iter().zip(&self.force_shapes) {
             let v = if left {
                 force.history.left_value(t)
             } else {
                 force.history.value(t)
             };
-            self.load(dof, c64::from_polar(v, force.direction), &mut f);
+            self.add_load(shape, c64::from_polar(v, force.direction), &mut f);
         }
         let sp = &self.spec.speed;
-        for (u, &dof) in self.spec.unbalances.iter().zip(&self.unbalance_dofs) {
+        for (u, shape) in self.spec.unbalances.iter().zip(&self.unbalance_shapes) {
             let on = if left { t > u.from } else { t >= u.from };
             if on {
                 let (w, a) = (sp.omega(t), sp.accel(t, left));
                 let rot = c64::from_polar(1.0, sp.angle(t) + u.phase);
-                self.load(dof, c64::new(w * w, -a) * rot * u.amount, &mut f);
+                self.add_load(shape, c64::new(w * w, -a) * rot * u.amount, &mut f);
             }
         }
         self.apply_m_inv(&f)
     }
 
-    /// `B` of a unit force on `dof` in the direction `angle` (both rows when doubled).
-    pub fn force_column(&self, dof: usize, angle: f64) -> Vec<c64> {
-        let mut f = vec![];
-        self.load(dof, c64::from_polar(1.0, angle), &mut f);
+    /// `B` of the unit force `k` in its direction (both rows when doubled).
+    pub fn force_column(&self, k: usize) -> Vec<c64> {
+        let mut f = vec![c64::new(0.0, 0.0); self.m_inv.nrows()];
+        let dir = c64::from_polar(1.0, self.spec.forces[k].direction);
+        self.add_load(&self.force_shapes[k], dir, &mut f);
         self.apply_m_inv(&f)
     }
 
-    /// `B` of a unit unbalance on `dof` at `phase`: one column per direction of whirl it
+    /// `B` of the unit unbalance `k` at its phase: one column per direction of whirl it
     /// drives, with that direction (+1 on `r`, -1 on `conj r`).
-    pub fn unbalance_columns(&self, dof: usize, phase: f64) -> Vec<(Vec<c64>, f64)> {
-        let mut out = vec![(self.apply_m_inv(&[(dof, c64::from_polar(1.0, phase))]), 1.0)];
-        if let Some(n) = self.doubled {
-            out.push((
-                self.apply_m_inv(&[(n + dof, c64::from_polar(1.0, -phase))]),
-                -1.0,
-            ));
+    pub fn unbalance_columns(&self, k: usize) -> Vec<(Vec<c64>, f64)> {
+        let shape = &self.unbalance_shapes[k];
+        let phase = c64::from_polar(1.0, self.spec.unbalances[k].phase);
+        let n = self.m_inv.nrows();
+        let mut f = vec![c64::new(0.0, 0.0); n];
+        for (i, &w) in shape.iter().enumerate() {
+            f[i] += phase * w;
+        }
+        let mut out = vec![(self.apply_m_inv(&f), 1.0)];
+        if let Some(h) = self.doubled {
+            let mut g = vec![c64::new(0.0, 0.0); n];
+            for (i, &w) in shape.iter().enumerate() {
+                g[h + i] += phase.conj() * w;
+            }
+            out.push((self.apply_m_inv(&g), -1.0));
         }
         out
     }
@@ -232,12 +274,29 @@ pub fn time_response(
     force_implicit: bool,
     control: &Control,
 ) -> Result<TimeResult, TimeError> {
+    let c = Coordinates {
+        physical: system,
+        solved: system,
+        basis: None,
+        slow: None,
+    };
+    solve_in(&c, model, spec, force_implicit, control)
+}
+
+/// Time response in the coordinates `c` (the rotor's own, or a reduction of it).
+pub fn solve_in(
+    c: &Coordinates,
+    model: &DampedModel,
+    spec: &TimeSpec,
+    force_implicit: bool,
+    control: &Control,
+) -> Result<TimeResult, TimeError> {
     control.expect(spec.output_times().len() as u64);
     let ModelKind::Linear(state) = &model.kind else {
         return Err(TimeError::Hysteretic);
     };
-    let forcing = Forcing::new(system, spec, state.size())?;
-    let out: Vec<usize> = spec.nodes.iter().map(|&n| translation(system, n)).collect();
+    let forcing = Forcing::new(c, spec, state.size())?;
+    let out: Vec<Vec<(usize, f64)>> = spec.nodes.iter().map(|&n| c.observe(n)).collect();
     if let (Some(w), false) = (spec.speed.constant(), force_implicit) {
         match exact::solve(state, w, &forcing, spec, &out, control) {
             Ok(r) => return finite(r),
@@ -245,7 +304,19 @@ pub fn time_response(
             Err(_) => {} // a nearly defective state matrix: integrate instead
         }
     }
-    finite(implicit::solve(state, &forcing, spec, &out, control)?)
+    finite(implicit::solve(
+        state,
+        &forcing,
+        spec,
+        &out,
+        c.slow.as_deref(),
+        control,
+    )?)
+}
+
+/// The output of observation `w` from a state `z` (displacements at `n..2n`).
+fn observed(w: &[(usize, f64)], z: &[c64], n: usize) -> c64 {
+    w.iter().map(|&(k, a)| z[n + k] * a).sum()
 }
 
 /// No NaN or infinity leaves: an overflowing response is an error with its reason.
@@ -255,9 +326,4 @@ fn finite(r: TimeResult) -> Result<TimeResult, TimeError> {
         .iter()
         .all(|(_, h)| h.iter().all(|z| z.re.is_finite() && z.im.is_finite()));
     if ok { Ok(r) } else { Err(TimeError::Overflow) }
-}
-
-/// Displacement rows of the reported degrees of freedom in the state.
-fn rows(state: &StateModel, out: &[usize]) -> Vec<usize> {
-    out.iter().map(|d| state.n() + d).collect()
 }

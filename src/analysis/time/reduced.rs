@@ -1,0 +1,87 @@
+//! Time responses along a speed profile on a checked modal reduction.
+//!
+//! A run-up or a blade loss excites the rotor at the spin speed and below, but an implicit
+//! integrator on the full model also follows every stiff, lightly damped high mode that the
+//! error control sees. On `q = Phi eta`, with `Phi` the undamped modes up to twice the band
+//! and the static corrections of the coupling forces and of the loads themselves
+//! ([`ModalBasis::augmented_with`]: the quasi-static response of every dropped mode to each
+//! load), the state is a few tens of entries and its fastest poles are a few times the band.
+//! The basis is the one a bounded Campbell sweep uses, checked the same way
+//! ([`super::super::reduction::reduce`]) but for what a forced response needs: at the fastest
+//! speed of the profile, every pole of the full model within the band is reproduced within
+//! 1e-3 of its decay rate (a response near a pole moves by that fraction), and the other way
+//! round.
+//! The band is twice the fastest speed (at least 1.5 times the first natural frequency); the
+//! answer reports the reduction, and the full model is integrated where none passes.
+//!
+//! [`ModalBasis::augmented_with`]: crate::fem::modal::ModalBasis::augmented_with
+
+use super::{
+    Coordinates, SpeedLaw, TimeError, TimeResult, TimeSpec, solve_in, time_response, translation,
+};
+use crate::analysis::control::Control;
+use crate::analysis::reduction::{Criterion, RESPONSE_TOLERANCE, Reduction, reduce};
+use crate::damping::{DampedModel, ModelKind};
+use crate::model::damping::DampingModel;
+use crate::system::RotorSystem;
+
+/// The band of a reduction for `spec`: twice the fastest speed, at least 1.5 times the first
+/// natural frequency.
+fn band(spec: &TimeSpec, first_mode: f64) -> f64 {
+    let (_, fastest) = spec.speed.range(spec.duration);
+    (2.0 * fastest).max(1.5 * first_mode)
+}
+
+/// The state entries of a reduced model `[v, x, y]` that belong to Ritz modes at most `cutoff`
+/// (velocities and displacements; branches by the mode they serve).
+fn slow_entries(model: &DampedModel, omega: &[f64], cutoff: f64) -> Vec<bool> {
+    let ModelKind::Linear(state) = &model.kind else {
+        return vec![true; model.states()];
+    };
+    let n = state.n();
+    // In doubled coordinates `(eta, conj eta)` each Ritz vector appears twice.
+    let m = omega.len().max(1);
+    let slow = |k: usize| omega.get(k % m).is_none_or(|&w| w <= cutoff);
+    let mut out: Vec<bool> = (0..2 * n).map(|i| slow(i % n)).collect();
+    out.extend(state.branches().mode.iter().map(|&k| slow(k)));
+    out
+}
+
+/// The time response of `spec`: on a checked reduction where the speed varies and one is
+/// allowed and passes, else on `full` (exact at constant speed).
+pub fn solve(
+    system: &RotorSystem,
+    damping: &DampingModel,
+    full: &DampedModel,
+    spec: &TimeSpec,
+    allow: bool,
+    control: &Control,
+) -> Result<(TimeResult, Option<Reduction>), TimeError> {
+    let varies = !matches!(spec.speed, SpeedLaw::Constant(_)) && spec.speed.constant().is_none();
+    if allow && varies {
+        let first = full.basis.omega.first().copied().unwrap_or(0.0);
+        let bound = band(spec, first);
+        let (_, fastest) = spec.speed.range(spec.duration);
+        let mut loads: Vec<usize> = spec
+            .forces
+            .iter()
+            .map(|f| f.node)
+            .chain(spec.unbalances.iter().map(|u| u.node))
+            .map(|node| translation(system, node))
+            .collect();
+        loads.sort_unstable();
+        loads.dedup();
+        let criterion = Criterion::Response(RESPONSE_TOLERANCE);
+        if let Ok(Some(r)) = reduce(system, damping, full, fastest, bound, &loads, criterion) {
+            let solved = r.basis.reduce(system);
+            let c = Coordinates {
+                physical: system,
+                solved: &solved,
+                basis: Some(&r.basis.phi),
+                slow: Some(slow_entries(&r.model, &r.basis.omega, 2.0 * bound)),
+            };
+            return Ok((solve_in(&c, &r.model, spec, true, control)?, Some(r.info)));
+        }
+    }
+    Ok((time_response(system, full, spec, false, control)?, None))
+}
