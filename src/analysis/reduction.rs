@@ -144,39 +144,44 @@ pub fn reduce(
             .filter(|s| s.re.abs() <= bound && s.im.abs() <= bound)
             .collect()
     };
-    let mut exact: Option<Vec<c64>> = None;
-    while m < n {
-        // A basis or model that cannot be built only means no reduction: solve the full one.
-        let Ok(sub) = basis.augmented_with(system, m, loads) else {
-            break;
-        };
-        let Ok(model) = DampedModel::build(&sub.reduce(system), damping) else {
-            break;
-        };
+    // A basis of `m` modes, its reduced model and the poles it gives; `None` if it cannot be
+    // built (which only means no reduction) or does not at least halve the state.
+    let candidate = |m: usize| -> Option<(ModalBasis, DampedModel, Vec<c64>)> {
+        let sub = basis.augmented_with(system, m, loads).ok()?;
+        let model = DampedModel::build(&sub.reduce(system), damping).ok()?;
         if 2 * model.states() > full.states() {
-            break;
+            return None;
         }
-        let exact = match &exact {
-            Some(e) => e,
-            None => exact.insert(compared_at(full, checked_speed, criterion)?),
-        };
-        let Ok(approx) = compared_at(&model, checked_speed, criterion) else {
-            break;
-        };
-        let error = distance(&inside(exact), &approx, criterion).max(distance(
+        let approx = compared_at(&model, checked_speed, criterion).ok()?;
+        Some((sub, model, approx))
+    };
+    if m >= n {
+        return Ok(None);
+    }
+    // The full model's poles (the one large solve) and the first basis at once.
+    let (exact, mut next) = rayon::join(
+        || compared_at(full, checked_speed, criterion),
+        || candidate(m),
+    );
+    let Some(first) = next.take() else {
+        return Ok(None);
+    };
+    let exact = exact?;
+    let tolerance = match criterion {
+        Criterion::Relative(t) | Criterion::Response(t) => t,
+    };
+    let mut current = Some(first);
+    while let Some((sub, model, approx)) = current {
+        let error = distance(&inside(&exact), &approx, criterion).max(distance(
             &inside(&approx),
-            exact,
+            &exact,
             criterion,
         ));
-        let tolerance = match criterion {
-            Criterion::Relative(t) | Criterion::Response(t) => t,
-        };
         if error <= tolerance {
-            let states = model.states();
             let info = Reduction {
                 modes: m,
                 vectors: sub.len(),
-                states,
+                states: model.states(),
                 full_states: full.states(),
                 band: basis.omega[m - 1],
                 checked_speed,
@@ -189,6 +194,7 @@ pub fn reduce(
             }));
         }
         m = (3 * m).div_ceil(2);
+        current = if m < n { candidate(m) } else { None };
     }
     Ok(None)
 }
