@@ -18,8 +18,6 @@ once on the full model (`modal_reduction: false`). ROSS: `run_campbell(speeds, f
 damped frequencies at every speed (Whirl's lowest |frequency| over its branches).
 """
 
-import contextlib
-import os
 import sys
 import time
 from pathlib import Path
@@ -30,28 +28,10 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "benches"))
 sys.path.insert(0, str(ROOT / "tests" / "data" / "ross"))
 from compare_ross import Whirl, ross_rotor as ross_rotor_simple  # noqa: E402
-from runup_ross import HELDOUT, issue_case  # noqa: E402
+from runup_ross import HELDOUT, heldout_rotor, issue_case, quiet, ross_rotor  # noqa: E402
 
 SPEEDS = 40
 FREQUENCIES = 6
-
-
-@contextlib.contextmanager
-def quiet():
-    sys.stdout.flush()
-    saved = os.dup(1)
-    with open(os.devnull, "w") as null:
-        os.dup2(null.fileno(), 1)
-        try:
-            yield
-        finally:
-            sys.stdout.flush()
-            os.dup2(saved, 1)
-            os.close(saved)
-
-
-with quiet():
-    from heldout import heldout_rotor, ross_rotor  # noqa: E402
 
 
 def lowest(camp, count):
