@@ -8,11 +8,14 @@
 //! load), the state is a few tens of entries and its fastest poles are a few times the band.
 //! The basis is the one a bounded Campbell sweep uses, checked the same way
 //! ([`super::super::reduction::reduce`]) but for what a forced response needs: at the fastest
-//! speed of the profile, every pole of the full model within the band is reproduced within
-//! 1e-3 of its decay rate (a response near a pole moves by that fraction), and the other way
-//! round.
+//! speed of the profile, every pole of the full model within the band (every rotor pole, when
+//! the model has Maxwell branches) is reproduced within 1e-3 of its decay rate (a response
+//! near a pole moves by that fraction), and the other way round.
 //! The band is twice the fastest speed (at least 1.5 times the first natural frequency); the
 //! answer reports the reduction, and the full model is integrated where none passes.
+//!
+//! Checked against the full model at tolerance 1e-8 in `tests/runup_reduction.rs`: the
+//! reduction moves the response by 3e-6 to 1.2e-5 of its peak.
 //!
 //! [`ModalBasis::augmented_with`]: crate::fem::modal::ModalBasis::augmented_with
 
