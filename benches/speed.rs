@@ -12,7 +12,7 @@
 use std::time::{Duration, Instant};
 
 use serde_json::Value;
-use whirl::analysis::campbell::{campbell, campbell_below};
+use whirl::analysis::campbell::{CampbellResult, campbell, campbell_below};
 use whirl::analysis::control::Control;
 use whirl::analysis::poles::poles_at;
 use whirl::analysis::time::{SpeedLaw, TimeSpec, reduced, time_response};
@@ -82,6 +82,33 @@ fn best(runs: usize, mut f: impl FnMut()) -> Duration {
         .unwrap()
 }
 
+/// Best of 3 bounded Campbell sweeps (branches below 6000 rad/s), model build included: the
+/// time, the full model's states and the last result.
+fn bounded_sweep(
+    system: &RotorSystem,
+    model: &DampingModel,
+    speeds: &[f64],
+    reduce: bool,
+) -> (Duration, usize, CampbellResult) {
+    let mut out = None;
+    let t = best(3, || {
+        let full = DampedModel::build(system, model).unwrap();
+        let c = campbell_below(
+            system,
+            model,
+            &full,
+            speeds,
+            6000.0,
+            reduce,
+            &Control::default(),
+        )
+        .unwrap();
+        out = Some((full.states(), c));
+    });
+    let (states, c) = out.unwrap();
+    (t, states, c)
+}
+
 /// One dense complex eigendecomposition (values and vectors) of the matrix in `path`
 /// (`{"re": [[..]], "im": [[..]]}`, as `/v1/damping` returns it), single-threaded.
 fn eigen_of_file(path: &str) {
@@ -138,22 +165,7 @@ fn main() {
                 if !guyan && !reduce {
                     continue; // 100 eigenproblems of 404 states: tens of seconds, shown by (d)
                 }
-                let mut out = None;
-                let t = best(3, || {
-                    let full = DampedModel::build(&system, &model).unwrap();
-                    let c = campbell_below(
-                        &system,
-                        &model,
-                        &full,
-                        &speeds,
-                        6000.0,
-                        reduce,
-                        &Control::default(),
-                    )
-                    .unwrap();
-                    out = Some((full.states(), c));
-                });
-                let (full_states, c) = out.unwrap();
+                let (t, full_states, c) = bounded_sweep(&system, &model, &speeds, reduce);
                 let problems = if matches!(model, DampingModel::Hysteretic) {
                     4
                 } else {
@@ -318,22 +330,8 @@ fn main() {
                 ("viscous", DampingModel::Viscous, true),
                 ("hysteretic", DampingModel::Hysteretic, true),
             ] {
-                let mut out = None;
-                let t = best(3, || {
-                    let full = DampedModel::build(system, &model).unwrap();
-                    let c = campbell_below(
-                        system,
-                        &model,
-                        &full,
-                        &speeds,
-                        6000.0,
-                        reduce,
-                        &Control::default(),
-                    )
-                    .unwrap();
-                    out = Some((full.states(), c.reduction.map(|r| r.states)));
-                });
-                let (states, reduced_states) = out.unwrap();
+                let (t, states, c) = bounded_sweep(system, &model, &speeds, reduce);
+                let reduced_states = c.reduction.map(|r| r.states);
                 println!(
                     "(e) compressor on {name} supports, Campbell {model_name}: {:.3} s for 100 speeds \
                      ({states} states, reduced to {reduced_states:?})",

@@ -91,8 +91,10 @@ pub fn reduce_for_sweep(
     .map(|r| (r.model, r.info)))
 }
 
-/// A checked reduction: the model, its basis (`q = phi eta`) and what was checked.
+/// A checked reduction: the rotor in the coordinates of its basis (`q = phi eta`), its damped
+/// model, the basis and what was checked.
 pub struct Reduced {
+    pub system: RotorSystem,
     pub model: DampedModel,
     pub basis: ModalBasis,
     pub info: Reduction,
@@ -146,14 +148,15 @@ pub fn reduce(
     };
     // A basis of `m` modes, its reduced model and the poles it gives; `None` if it cannot be
     // built (which only means no reduction) or does not at least halve the state.
-    let candidate = |m: usize| -> Option<(ModalBasis, DampedModel, Vec<c64>)> {
+    let candidate = |m: usize| -> Option<(ModalBasis, RotorSystem, DampedModel, Vec<c64>)> {
         let sub = basis.augmented_with(system, m, loads).ok()?;
-        let model = DampedModel::build(&sub.reduce(system), damping).ok()?;
+        let reduced = sub.reduce(system);
+        let model = DampedModel::build(&reduced, damping).ok()?;
         if 2 * model.states() > full.states() {
             return None;
         }
         let approx = compared_at(&model, checked_speed, criterion).ok()?;
-        Some((sub, model, approx))
+        Some((sub, reduced, model, approx))
     };
     if m >= n {
         return Ok(None);
@@ -171,7 +174,7 @@ pub fn reduce(
         Criterion::Relative(t) | Criterion::Response(t) => t,
     };
     let mut current = Some(first);
-    while let Some((sub, model, approx)) = current {
+    while let Some((sub, reduced, model, approx)) = current {
         let error = distance(&inside(&exact), &approx, criterion).max(distance(
             &inside(&approx),
             &exact,
@@ -188,6 +191,7 @@ pub fn reduce(
                 max_relative_error: error,
             };
             return Ok(Some(Reduced {
+                system: reduced,
                 model,
                 basis: sub,
                 info,

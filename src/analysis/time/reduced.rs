@@ -19,21 +19,12 @@
 //!
 //! [`ModalBasis::augmented_with`]: crate::fem::modal::ModalBasis::augmented_with
 
-use super::{
-    Coordinates, SpeedLaw, TimeError, TimeResult, TimeSpec, solve_in, time_response, translation,
-};
+use super::{Coordinates, TimeError, TimeResult, TimeSpec, solve_in, time_response, translation};
 use crate::analysis::control::Control;
 use crate::analysis::reduction::{Criterion, RESPONSE_TOLERANCE, Reduction, reduce};
 use crate::damping::{DampedModel, ModelKind};
 use crate::model::damping::DampingModel;
 use crate::system::RotorSystem;
-
-/// The band of a reduction for `spec`: twice the fastest speed, at least 1.5 times the first
-/// natural frequency.
-fn band(spec: &TimeSpec, first_mode: f64) -> f64 {
-    let (_, fastest) = spec.speed.range(spec.duration);
-    (2.0 * fastest).max(1.5 * first_mode)
-}
 
 /// The state entries of a reduced model `[v, x, y]` that belong to Ritz modes at most `cutoff`
 /// (velocities and displacements; branches by the mode they serve).
@@ -60,26 +51,23 @@ pub fn solve(
     allow: bool,
     control: &Control,
 ) -> Result<(TimeResult, Option<Reduction>), TimeError> {
-    let varies = !matches!(spec.speed, SpeedLaw::Constant(_)) && spec.speed.constant().is_none();
-    if allow && varies {
+    if allow && spec.speed.constant().is_none() {
+        // The band: twice the fastest speed, at least 1.5 times the first natural frequency.
         let first = full.basis.omega.first().copied().unwrap_or(0.0);
-        let bound = band(spec, first);
         let (_, fastest) = spec.speed.range(spec.duration);
-        let mut loads: Vec<usize> = spec
+        let bound = (2.0 * fastest).max(1.5 * first);
+        let loads: Vec<usize> = spec
             .forces
             .iter()
             .map(|f| f.node)
             .chain(spec.unbalances.iter().map(|u| u.node))
             .map(|node| translation(system, node))
             .collect();
-        loads.sort_unstable();
-        loads.dedup();
         let criterion = Criterion::Response(RESPONSE_TOLERANCE);
         if let Ok(Some(r)) = reduce(system, damping, full, fastest, bound, &loads, criterion) {
-            let solved = r.basis.reduce(system);
             let c = Coordinates {
                 physical: system,
-                solved: &solved,
+                solved: &r.system,
                 basis: Some(&r.basis.phi),
                 slow: Some(slow_entries(&r.model, &r.basis.omega, 2.0 * bound)),
             };

@@ -1,0 +1,365 @@
+//! Requests and answers of the frequency-domain analyses: modal, Campbell, stability, and
+//! the damping models as matrices.
+
+use serde::{Deserialize, Serialize};
+use utoipa::ToSchema;
+
+use super::*;
+
+/// Body of `POST /v1/modal`.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ModalRequest {
+    pub rotor: RotorInput,
+    pub damping: DampingInput,
+    /// Spin speed, rad/s (default 0).
+    #[serde(default)]
+    pub speed: f64,
+}
+
+/// Body of `POST /v1/campbell` and `POST /v1/stability`.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SweepRequest {
+    pub rotor: RotorInput,
+    pub damping: DampingInput,
+    pub speeds: SpeedsInput,
+    /// Campbell only: report the branches whose |frequency| at their first speed is at most
+    /// this, rad/s (default: all). Stability always considers every pole.
+    #[serde(default)]
+    pub max_frequency: Option<f64>,
+    /// Campbell only, with `max_frequency`: solve on the lowest undamped modes where that at
+    /// least halves the state and reproduces the full model's poles below `max_frequency` to
+    /// 1e-6 relative at the fastest speed of the sweep (default true). The answer's
+    /// `reduction` says what was solved.
+    #[serde(default)]
+    pub modal_reduction: Option<bool>,
+}
+
+/// Direction of whirl of a pole: `forward` (whirl frequency > 0), `backward` (< 0), or
+/// `internal` (an overdamped pole of the nonviscous model's internal coordinates).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, ToSchema)]
+#[serde(rename_all = "lowercase")]
+pub enum Whirl {
+    Forward,
+    Backward,
+    Internal,
+}
+
+/// A pole `s = decay_rate + i frequency` of the free motion `q0 e^{s t}`.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct Pole {
+    /// Real part sigma, 1/s; > 0 means unstable.
+    pub decay_rate: f64,
+    /// Imaginary part omega, rad/s: > 0 forward, < 0 backward whirl.
+    pub frequency: f64,
+    pub whirl: Whirl,
+    /// `-sigma / |s|`.
+    pub damping_ratio: f64,
+    /// `-2 pi sigma / |omega|`; null for a pole that does not oscillate.
+    pub log_decrement: Option<f64>,
+    /// Rotor poles: `(F - B) / (F + B)` of the forward and backward circular parts of the
+    /// orbits, in [-1, 1]: +1 circular forward, -1 circular backward, 0 planar (elliptical in
+    /// between; always +-1 on isotropic supports).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub whirl_ratio: Option<f64>,
+    /// Mode shape (`modal` only, rotor poles): the complex translation `x + i y` of each node,
+    /// scaled so that the largest is 1 and real.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shape: Option<Vec<NodeDisplacement>>,
+}
+
+/// Complex translation of a node in a mode shape.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct NodeDisplacement {
+    pub node: usize,
+    pub re: f64,
+    pub im: f64,
+}
+
+/// Answer of `POST /v1/modal`.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct ModalResponse {
+    /// Spin speed, rad/s.
+    pub speed: f64,
+    /// Rotor poles by increasing |frequency|, then internal poles by decreasing |decay_rate|.
+    pub poles: Vec<Pole>,
+    /// Natural frequencies of the undamped nonrotating system, rad/s, ascending.
+    pub natural_frequencies: Vec<f64>,
+    /// Size of the first-order eigenproblem solved (per sign combination for `hysteretic`).
+    pub states: usize,
+    /// Rotor poles the model does not define at this speed (hysteretic model near a critical
+    /// speed: no sign-consistent root), counted against the number of rotor poles (2 per
+    /// complex degree of freedom).
+    pub missing_poles: usize,
+    /// How the model was read where it needed saying: supports held at the ends of their
+    /// tables of coefficients outside them.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<String>,
+}
+
+/// One Campbell branch: the same physical mode followed from speed to speed.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct Branch {
+    /// Mode number, 1 = lowest |frequency| at the first speed, counted per whirl direction.
+    pub mode: usize,
+    pub whirl: Whirl,
+    /// Whirl frequency at each speed, rad/s (negative for backward whirl); null where the
+    /// model defines no pole for this mode.
+    pub frequency: Vec<Option<f64>>,
+    /// Decay rate at each speed, 1/s; null where the model defines no pole for this mode.
+    pub decay_rate: Vec<Option<f64>>,
+}
+
+/// Answer of `POST /v1/campbell`.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct CampbellResponse {
+    pub speeds: Vec<f64>,
+    pub branches: Vec<Branch>,
+    /// Speeds where a forward branch crosses the 1x line (frequency = speed), interpolated.
+    pub critical_speeds: Vec<f64>,
+    /// Lowest speed of the range at which a pole has decay_rate > 0, refined by root finding;
+    /// null when stable over the whole range.
+    pub threshold: Option<f64>,
+    /// The modal reduction the sweep ran on; null when it ran on the full model.
+    pub reduction: Option<ReductionInfo>,
+    /// How the model was read where it needed saying: supports held at the ends of their
+    /// tables of coefficients outside them.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<String>,
+}
+
+/// A sweep or a time response solved on the lowest undamped nonrotating modes (a Rayleigh-Ritz
+/// reduction), and how well it reproduces the full model. The threshold then concerns the poles those modes carry.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct ReductionInfo {
+    /// Undamped modes retained.
+    pub modes: usize,
+    /// Size of the basis: those modes and the independent static corrections of the forces that
+    /// couple them (gyroscopic, damping, loss), made modes of the subspace again.
+    pub vectors: usize,
+    /// Natural frequency of the highest retained mode, rad/s.
+    pub band: f64,
+    /// State size of each eigenproblem solved.
+    pub states: usize,
+    /// State size of the full model.
+    pub full_states: usize,
+    /// Speed at which every full-model pole with |decay_rate| and |frequency| at most
+    /// `max_frequency` was compared with the reduced ones (and the other way round), rad/s.
+    pub checked_speed: f64,
+    /// Largest distance between a reduced and a full-model pole found there: for a sweep
+    /// relative, `|s_reduced - s_full| / |s_full|` (at most 1e-6); for a time response
+    /// relative to the decay rate, `|s_reduced - s_full| / max(|Re s_full|, 1e-3 |s_full|)`
+    /// (at most 1e-3: a forced response near a pole moves by about that fraction).
+    pub max_relative_error: f64,
+}
+
+/// Answer of `POST /v1/stability`.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct StabilityResponse {
+    /// Lowest speed in `range` at which a pole has decay_rate > 0 (to 1e-6 relative), or null.
+    pub threshold: Option<f64>,
+    /// Mode number of the pole that becomes unstable (by |frequency| within its whirl).
+    pub mode: Option<usize>,
+    pub whirl: Option<Whirl>,
+    /// Whirl frequency of that pole at the threshold, rad/s.
+    pub frequency: Option<f64>,
+    /// `[start, stop]` searched.
+    pub range: [f64; 2],
+    /// The grid searched, rad/s.
+    pub speeds: Vec<f64>,
+    /// Largest decay rate of all poles at each grid speed, 1/s.
+    pub max_decay_rate: Vec<f64>,
+    /// How the model was read where it needed saying: supports held at the ends of their
+    /// tables of coefficients outside them.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<String>,
+}
+
+/// Body of `POST /v1/damping`.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct DampingMatricesRequest {
+    pub rotor: RotorInput,
+    /// `equivalent` or `nonviscous` (the models with time-domain matrices).
+    pub damping: DampingInput,
+    /// Matrices in second-order form (default) or the first-order state matrix.
+    #[serde(default)]
+    pub form: Option<MatrixForm>,
+    /// Band and target of the nonviscous fit report; with `max_deviation` the number of
+    /// branches of each side is chosen automatically (omit `branches` and `nu` then).
+    #[serde(default)]
+    pub fit: Option<FitInput>,
+    /// Spin speed at which supports tabulated against speed are evaluated, rad/s (default 0).
+    #[serde(default)]
+    pub speed: Option<f64>,
+}
+
+/// Form of the returned matrices.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, ToSchema, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum MatrixForm {
+    /// `M q'' + (C_n + C_r - i Omega G) q' + (K - i Omega C_r) q = F`, internal coordinates
+    /// appended to `q`.
+    SecondOrder,
+    /// `z' = (A0 + Omega A1) z + B F`, `z = [v, x, y]`, `v = x'`: `2n + p` states.
+    State,
+}
+
+/// Fit options of the nonviscous model.
+#[derive(Debug, Clone, Default, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct FitInput {
+    /// `[low, high]`, rad/s: the band of frequencies the damper material sees (`omega` for
+    /// supports, `omega - Omega` in the rotor). Default: per damper, `branches` spacings wide
+    /// centred on its tuning frequency.
+    #[serde(default)]
+    pub band: Option<[f64; 2]>,
+    /// Largest acceptable relative deviation of the loss factor over the band; when given,
+    /// each side gets the fewest branches (1..=12) that achieve it for every mode.
+    #[serde(default)]
+    pub max_deviation: Option<f64>,
+}
+
+/// A complex matrix as its real and imaginary parts.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct ComplexMatrix {
+    pub re: Vec<Vec<f64>>,
+    pub im: Vec<Vec<f64>>,
+}
+
+/// Second-order matrices of the coordinates in `coordinates`:
+/// `M q'' + (C_n + C_r - i Omega S G) q' + (K - i Omega S C_r) q = F`, `S = diag(spin)`
+/// (`spin` all 1 unless the coordinates are doubled). Real and symmetric for isotropic
+/// supports; supports in the general form may add imaginary parts (`imaginary`).
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct SecondOrderMatrices {
+    pub mass: Vec<Vec<f64>>,
+    pub gyroscopic: Vec<Vec<f64>>,
+    pub stiffness: Vec<Vec<f64>>,
+    /// Rotating damping (its circulatory term is `-i Omega S C_r q`).
+    pub damping_rotating: Vec<Vec<f64>>,
+    pub damping_nonrotating: Vec<Vec<f64>>,
+    /// The imaginary parts of the same matrices, when any is nonzero.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schema(no_recursion)]
+    pub imaginary: Option<Box<SecondOrderMatrices>>,
+    /// Doubled coordinates `(r, conj r)`: -1 on the `conj r` coordinates (and their rotating
+    /// branches), where the terms in the spin speed change sign; +1 elsewhere.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spin: Option<Vec<f64>>,
+}
+
+/// First-order form `z' = (A0 + Omega A1) z + B F`.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct StateMatrices {
+    /// `A0`, the state matrix at rest.
+    pub constant: ComplexMatrix,
+    /// `A1 = dA/dOmega`.
+    pub per_speed: ComplexMatrix,
+    /// `B` (states x physical coordinates): `M^-1` on the velocities, zero elsewhere.
+    pub input: Vec<Vec<f64>>,
+}
+
+/// A coordinate of the returned matrices.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct CoordinateOut {
+    pub index: usize,
+    /// `translation`, `rotation` or `internal`.
+    pub kind: String,
+    /// Doubled coordinates: whether this is the `conj r` copy of a physical coordinate.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub conjugate: Option<bool>,
+    /// Node of a physical coordinate.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub node: Option<usize>,
+    /// Mode (from 1) whose damper an internal coordinate belongs to.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mode: Option<usize>,
+    /// Branch (from 1) within its damper.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub branch: Option<usize>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rotating: Option<bool>,
+    /// Relaxation rate d_j, 1/s.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub relaxation_rate: Option<f64>,
+}
+
+/// The loss of one undamped mode and its equivalent viscous damping.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct ModeLoss {
+    pub mode: usize,
+    pub natural_frequency: f64,
+    pub loss_factor_rotating: f64,
+    pub loss_factor_nonrotating: f64,
+}
+
+/// A point of a damper's loss-factor curve.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct FitPoint {
+    /// Frequency the damper material sees, rad/s.
+    pub frequency: f64,
+    pub loss_factor: f64,
+    /// Added storage stiffness relative to the modal stiffness.
+    pub storage_change: f64,
+}
+
+/// How one nonviscous damper reproduces its hysteretic loss.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct DamperReport {
+    pub mode: usize,
+    pub rotating: bool,
+    pub tuning_frequency: f64,
+    /// Target loss factor of the mode.
+    pub loss_factor: f64,
+    pub branches: usize,
+    pub spacing: f64,
+    pub relaxation_rates: Vec<f64>,
+    /// Branch springs k_j and dampers c_j, modal units (mass-normalised modes).
+    pub springs: Vec<f64>,
+    pub dampers: Vec<f64>,
+    pub band: [f64; 2],
+    /// Largest `|eta_branches / eta - 1|` over the band.
+    pub max_deviation: f64,
+    pub rms_deviation: f64,
+    pub storage_change_at_tuning: f64,
+    pub max_storage_change: f64,
+    pub added_states: usize,
+    pub curve: Vec<FitPoint>,
+}
+
+/// Answer of `POST /v1/damping`.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct DampingMatricesResponse {
+    pub model: String,
+    /// The coordinates of the second-order matrices, physical first, then internal.
+    pub coordinates: Vec<CoordinateOut>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub second_order: Option<SecondOrderMatrices>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub state: Option<StateMatrices>,
+    /// Equivalent model: the added `C_eq` alone, rotating and nonrotating.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub equivalent_rotating: Option<Vec<Vec<f64>>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub equivalent_nonrotating: Option<Vec<Vec<f64>>>,
+    /// Imaginary part of `equivalent_nonrotating`, when nonzero (supports in the general form).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub equivalent_nonrotating_imaginary: Option<Vec<Vec<f64>>>,
+    /// Modal loss factors of the retained modes.
+    pub modes: Vec<ModeLoss>,
+    /// Nonviscous model: one report per damper.
+    pub dampers: Vec<DamperReport>,
+    /// Internal coordinates (= added states) of the model.
+    pub added_states: usize,
+    /// Branches per damper actually used, rotating and nonrotating.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub branches_rotating: Option<usize>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub branches_nonrotating: Option<usize>,
+    /// How the model was read where it needed saying: supports held at the ends of their
+    /// tables of coefficients outside them.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<String>,
+}

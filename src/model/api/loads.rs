@@ -1,0 +1,170 @@
+//! Requests and answers of the forced responses: time response and steady unbalance response.
+
+use serde::{Deserialize, Serialize};
+use utoipa::ToSchema;
+
+use super::*;
+
+/// A nonrotating force with a fixed direction.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ForceInput {
+    #[schema(minimum = 0)]
+    pub node: i64,
+    /// Angle of the force from the x axis, rad.
+    #[serde(default)]
+    pub direction: f64,
+    /// `[[t, F], ...]`, s and N, piecewise linear; a repeated time is a jump; held constant
+    /// before the first and after the last point.
+    pub history: Vec<[f64; 2]>,
+}
+
+/// An unbalance rotating with the shaft.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct UnbalanceInput {
+    #[schema(minimum = 0)]
+    pub node: i64,
+    /// `m e`, kg m (>= 0).
+    #[schema(minimum = 0.0)]
+    pub amount: f64,
+    /// Angle on the rotor, rad (0: on the x axis at t = 0).
+    #[serde(default)]
+    pub phase: f64,
+    /// Time it appears, s (default 0); later than 0 makes a sudden unbalance (blade loss).
+    #[serde(default)]
+    #[schema(minimum = 0.0)]
+    pub from: f64,
+}
+
+/// Body of `POST /v1/time-response`.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct TimeResponseRequest {
+    pub rotor: RotorInput,
+    /// `viscous`, `equivalent` or `nonviscous` (hysteretic damping has no time-domain form).
+    pub damping: DampingInput,
+    /// Constant spin speed, rad/s (give this or `speed_profile`).
+    #[serde(default)]
+    pub speed: Option<f64>,
+    /// `[[t, Omega], ...]`: piecewise-linear spin speed (run-up, run-down), held after the last
+    /// point; no jumps.
+    #[serde(default)]
+    pub speed_profile: Option<Vec<[f64; 2]>>,
+    #[serde(default)]
+    pub forces: Vec<ForceInput>,
+    #[serde(default)]
+    pub unbalances: Vec<UnbalanceInput>,
+    /// Length of the simulation, s.
+    #[schema(exclusive_minimum = 0.0)]
+    pub duration: f64,
+    /// Output sampling interval, s: samples at 0, dt, 2 dt, ... up to `duration`.
+    #[schema(exclusive_minimum = 0.0)]
+    pub output_interval: f64,
+    /// Nodes to report (default: all nodes with a translation).
+    #[serde(default)]
+    pub nodes: Option<Vec<i64>>,
+    /// Relative tolerance of the implicit integrator (varying speed), in [1e-12, 1e-2];
+    /// default 1e-6.
+    #[serde(default)]
+    pub tolerance: Option<f64>,
+    /// Varying speed: integrate on the lowest undamped modes and the static corrections of
+    /// the coupling forces, the supports and the loads, where that at least halves the state
+    /// and, at the fastest speed, reproduces every full-model pole below twice that speed
+    /// (at least 1.5 times the first natural frequency) within 1e-3 of its decay rate, and
+    /// the other way round (default true). The answer's `reduction` says what was solved.
+    #[serde(default)]
+    pub modal_reduction: Option<bool>,
+}
+
+/// The response of one node.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct NodeHistory {
+    pub node: usize,
+    /// Displacement along x, m.
+    pub x: Vec<f64>,
+    /// Displacement along y, m.
+    pub y: Vec<f64>,
+}
+
+/// Answer of `POST /v1/time-response`.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct TimeResponseResponse {
+    pub time: Vec<f64>,
+    pub nodes: Vec<NodeHistory>,
+    /// `exact` (constant speed: modal superposition, exact for piecewise-linear forces and
+    /// unbalance) or `implicit` (TR-BDF2, L-stable, error-controlled).
+    pub method: String,
+    /// Integration steps taken (implicit) or 0.
+    pub steps: usize,
+    /// Size of the state.
+    pub states: usize,
+    /// The modal reduction integrated (varying speed); null when the full model was.
+    #[serde(default)]
+    pub reduction: Option<ReductionInfo>,
+    /// How the model was read where it needed saying: supports held at the ends of their
+    /// tables of coefficients outside them.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<String>,
+}
+
+/// Unbalance for the steady response (no `from`).
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SteadyUnbalanceInput {
+    #[schema(minimum = 0)]
+    pub node: i64,
+    /// `m e`, kg m.
+    #[schema(minimum = 0.0)]
+    pub amount: f64,
+    #[serde(default)]
+    pub phase: f64,
+}
+
+/// Body of `POST /v1/unbalance-response`.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct UnbalanceResponseRequest {
+    pub rotor: RotorInput,
+    pub damping: DampingInput,
+    pub speeds: SpeedsInput,
+    pub unbalances: Vec<SteadyUnbalanceInput>,
+    /// Nodes to report (default: all nodes with a translation).
+    #[serde(default)]
+    pub nodes: Option<Vec<i64>>,
+}
+
+/// Steady synchronous response of one node: an elliptical orbit (a circle on isotropic
+/// supports).
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct NodeUnbalance {
+    pub node: usize,
+    /// Semi-major axis of the orbit, m (zero to peak): the radius of a circular orbit.
+    pub amplitude: Vec<f64>,
+    /// Angle of the forward part of the whirl relative to the rotor's reference (the
+    /// unbalance at phase 0), rad: `r = a e^{i Omega t} + conj(b) e^{-i Omega t}` with
+    /// `a = |a| e^{i phase}`; for a circular orbit `r = amplitude e^{i (Omega t + phase)}`.
+    pub phase: Vec<f64>,
+    /// `x(t) = x_amplitude cos(Omega t + x_phase)`, m and rad (ROSS's complex amplitudes).
+    pub x_amplitude: Vec<f64>,
+    pub x_phase: Vec<f64>,
+    /// `y(t) = y_amplitude cos(Omega t + y_phase)`.
+    pub y_amplitude: Vec<f64>,
+    pub y_phase: Vec<f64>,
+    /// Semi-axes of the orbit, m.
+    pub major: Vec<f64>,
+    pub minor: Vec<f64>,
+}
+
+/// Answer of `POST /v1/unbalance-response`.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct UnbalanceResponseResponse {
+    pub speeds: Vec<f64>,
+    pub nodes: Vec<NodeUnbalance>,
+    /// How the damping model treats synchronous whirl.
+    pub note: String,
+    /// How the model was read where it needed saying: supports held at the ends of their
+    /// tables of coefficients outside them.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<String>,
+}

@@ -1,0 +1,214 @@
+//! The forced responses' requests parsed into tasks: time response (loads, speed law,
+//! samples) and steady unbalance response.
+
+use super::*;
+
+/// A node of a rotor with `nodes` nodes, or the error at `at`.
+fn node_index(bad: &mut Invalid, at: String, k: i64, nodes: usize) -> Option<usize> {
+    if k >= 0 && (k as u64) < nodes as u64 {
+        Some(k as usize)
+    } else {
+        bad.push(
+            at,
+            format!("node {k} does not exist (nodes 0 to {})", nodes - 1),
+        );
+        None
+    }
+}
+
+/// The nodes to report: the requested ones (validated) or all.
+fn report_nodes(bad: &mut Invalid, requested: &Option<Vec<i64>>, nodes: usize) -> Vec<usize> {
+    match requested {
+        None => (0..nodes).collect(),
+        Some(list) => {
+            if list.is_empty() {
+                bad.push("nodes", "needs at least one node (or omit it for all)");
+            }
+            list.iter()
+                .enumerate()
+                .filter_map(|(i, &k)| node_index(bad, format!("nodes[{i}]"), k, nodes))
+                .collect()
+        }
+    }
+}
+
+impl TimeResponseRequest {
+    pub fn parse(&self, limits: &Limits) -> Result<Task, Invalid> {
+        let mut bad = Invalid::default();
+        if matches!(self.damping, DampingInput::Hysteretic(_)) {
+            bad.push(
+                "damping.model",
+                "the hysteretic model is defined for harmonic motion only and cannot be \
+                 integrated in time; use `nonviscous` (its time-domain model) or `equivalent`",
+            );
+        }
+        let speed = match (self.speed, &self.speed_profile) {
+            (Some(w), None) => bad.check("speed", non_negative(w)).map(SpeedLaw::Constant),
+            (None, Some(p)) => {
+                let law = Pwl::parse(p, "speed_profile", false, &mut bad);
+                if p.iter().any(|q| q[1] < 0.0) {
+                    bad.push("speed_profile", "speeds must be >= 0");
+                }
+                law.map(SpeedLaw::Profile)
+            }
+            (Some(_), Some(_)) => {
+                bad.push("speed", "give `speed` or `speed_profile`, not both");
+                None
+            }
+            (None, None) => {
+                bad.push("speed", "give `speed` (constant) or `speed_profile`");
+                None
+            }
+        };
+        let duration = bad.check("duration", positive(self.duration));
+        let dt = bad.check("output_interval", positive(self.output_interval));
+        let tolerance = match self.tolerance {
+            None => Some(1e-6),
+            Some(x) if (1e-12..=1e-2).contains(&x) => Some(x),
+            Some(x) => {
+                bad.push("tolerance", format!("must be in [1e-12, 1e-2] (got {x})"));
+                None
+            }
+        };
+        // The output size is known from the request alone: check it before anything else.
+        let requested_nodes = self.nodes.as_ref().map(Vec::len);
+        let samples = match (duration, dt) {
+            (Some(d), Some(h)) => Some(sample_count(d, h)),
+            _ => None,
+        };
+        let model = Model::parse(&self.rotor, &self.damping, limits, bad)?;
+        let mut bad = Invalid::default();
+        let nodes = model.rotor.node_count();
+        let node = |bad: &mut Invalid, at: String, k: i64| node_index(bad, at, k, nodes);
+        let reported = requested_nodes.unwrap_or(nodes).max(1);
+        let samples = samples.expect("validated");
+        if samples.saturating_mul(reported) > limits.max_samples {
+            bad.push(
+                "output_interval",
+                format!(
+                    "{samples} samples x {reported} nodes exceed the limit of {} values \
+                     (WHIRL_MAX_SAMPLES): use a longer interval or fewer nodes",
+                    limits.max_samples
+                ),
+            );
+            return Err(bad);
+        }
+        let mut forces = vec![];
+        for (i, f) in self.forces.iter().enumerate() {
+            let at = format!("forces[{i}]");
+            let n = node(&mut bad, format!("{at}.node"), f.node);
+            let dir = bad.check(&format!("{at}.direction"), finite(f.direction));
+            let h = Pwl::parse(&f.history, &format!("{at}.history"), true, &mut bad);
+            if let (Some(node), Some(direction), Some(history)) = (n, dir, h) {
+                forces.push(Force {
+                    node,
+                    direction,
+                    history,
+                });
+            }
+        }
+        let mut unbalances = vec![];
+        for (i, u) in self.unbalances.iter().enumerate() {
+            let at = format!("unbalances[{i}]");
+            let n = node(&mut bad, format!("{at}.node"), u.node);
+            let amount = bad.check(&format!("{at}.amount"), non_negative(u.amount));
+            let phase = bad.check(&format!("{at}.phase"), finite(u.phase));
+            let from = bad.check(&format!("{at}.from"), non_negative(u.from));
+            if let (Some(node), Some(amount), Some(phase), Some(from)) = (n, amount, phase, from) {
+                unbalances.push(Unbalance {
+                    node,
+                    amount,
+                    phase,
+                    from,
+                });
+            }
+        }
+        let out = report_nodes(&mut bad, &self.nodes, nodes);
+        if !bad.is_empty() {
+            return Err(bad);
+        }
+        let spec = TimeSpec {
+            speed: speed.expect("validated"),
+            forces,
+            unbalances,
+            duration: duration.expect("validated"),
+            output_interval: dt.expect("validated"),
+            nodes: out,
+            tolerance: tolerance.expect("validated"),
+            max_steps: limits.max_steps,
+            reduce: self.modal_reduction.unwrap_or(true),
+        };
+        let size = model.size();
+        let (s, n) = (size.states() as u64, size.dofs as u64);
+        let values = samples as u64 * (1 + 2 * reported as u64);
+        // Histories (complex) and, exact: V^-1 loads and the output rows of V; implicit: the
+        // LU of the stage matrix and a few state vectors. Both within a second eigen's heap.
+        let loads = (spec.forces.len() + spec.unbalances.len()) as u64;
+        let extra = samples as u64 * reported as u64 * 16
+            + 16 * s * (loads + reported as u64 + 16)
+            + 16 * n * n;
+        let steps = if spec.speed.constant().is_some() {
+            0.0
+        } else {
+            (samples as f64).max(1e4)
+        };
+        let work = size.eigen_work() + steps * 8.0 * (s * s) as f64;
+        let cost = Cost::new(size, 2, 0, extra, values).with_work(work);
+        let (lo, hi) = spec.speed.range(spec.duration);
+        Task {
+            warnings: model.warnings(lo, hi),
+            kind: TaskKind::Time { model, spec },
+            cost,
+        }
+        .bounded(limits, "output_interval")
+    }
+}
+
+impl UnbalanceResponseRequest {
+    pub fn parse(&self, limits: &Limits) -> Result<Task, Invalid> {
+        let mut bad = Invalid::default();
+        let grid = speeds(&self.speeds, limits, &mut bad);
+        if self.unbalances.is_empty() {
+            bad.push("unbalances", "needs at least one unbalance");
+        }
+        let model = Model::parse(&self.rotor, &self.damping, limits, bad)?;
+        let mut bad = Invalid::default();
+        let nodes = model.rotor.node_count();
+        let mut unbalances = vec![];
+        for (i, u) in self.unbalances.iter().enumerate() {
+            let at = format!("unbalances[{i}]");
+            let n = node_index(&mut bad, format!("{at}.node"), u.node, nodes);
+            let amount = bad.check(&format!("{at}.amount"), non_negative(u.amount));
+            let phase = bad.check(&format!("{at}.phase"), finite(u.phase));
+            if let (Some(n), Some(a), Some(p)) = (n, amount, phase) {
+                unbalances.push((n, a, p));
+            }
+        }
+        let out = report_nodes(&mut bad, &self.nodes, nodes);
+        if !bad.is_empty() {
+            return Err(bad);
+        }
+        let speeds = grid.expect("validated");
+        let size = model.size();
+        let count = speeds.as_slice().len() as u64;
+        let values = count * (1 + 8 * out.len() as u64);
+        let s = size.states() as u64;
+        let threads = limits.threads.max(1) as u64;
+        // Per thread: the state matrix, the system and its LU.
+        let extra = threads * 3 * 16 * s * s + count * out.len() as u64 * 16;
+        let work = count as f64 * (s * s * s) as f64 * 3.0;
+        let cost = Cost::new(size, 0, 0, extra, values).with_work(work);
+        let (lo, hi) = speeds.range();
+        Task {
+            warnings: model.warnings(lo, hi),
+            kind: TaskKind::Unbalance {
+                model,
+                speeds,
+                unbalances,
+                nodes: out,
+            },
+            cost,
+        }
+        .bounded(limits, "speeds")
+    }
+}
