@@ -1,6 +1,7 @@
 //! Analyses on a damped model: poles at one speed (`modal`), sweeps with branch tracking
 //! (`campbell`), and the threshold of instability (`stability`).
 
+pub mod audit;
 pub mod campbell;
 pub mod control;
 pub mod modal;

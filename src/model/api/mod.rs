@@ -7,10 +7,12 @@
 //! responses), [`service`] (health, problems, jobs).
 
 mod analyses;
+mod audit;
 mod loads;
 mod service;
 
 pub use analyses::*;
+pub use audit::*;
 pub use loads::*;
 pub use service::*;
 

@@ -1,0 +1,11 @@
+//! The analyses of a rotordynamic audit (API 684 / API 617): the undamped critical speed map
+//! ([`critical_map`]), static deflection and bearing loads ([`statics`]), the Level I stability
+//! screen ([`level1`]), the non-synchronous frequency response ([`frequency`]) and the
+//! resonance peaks of a response curve with their amplification factors and separation
+//! margins ([`peaks`]).
+
+pub mod critical_map;
+pub mod frequency;
+pub mod level1;
+pub mod peaks;
+pub mod statics;
