@@ -569,3 +569,40 @@ async fn metrics_and_request_ids() {
         assert!(text.contains(line), "{line} missing from:\n{text}");
     }
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_audit_analyses_run_as_jobs_and_their_results_render_again() {
+    let (config, _dir) = config();
+    let app = app(config);
+    for (analysis, file, accept) in [
+        (
+            "critical-speed-map",
+            "rotor-a.critical-speed-map.json",
+            "text/csv",
+        ),
+        ("static", "ross-rotor-example.static.json", "image/svg+xml"),
+        ("level1", "example1-hysteretic.level1.json", "text/csv"),
+        (
+            "frequency-response",
+            "example1-hysteretic.frequency-response.json",
+            "image/svg+xml",
+        ),
+        ("report", "rotor-a-nvd.report.json", "text/html"),
+    ] {
+        let body = json!({"analysis": analysis, "input": example(file)});
+        let (status, v) = json_call(&app, "POST", "/v1/jobs", Some(body)).await;
+        assert_eq!(status, StatusCode::ACCEPTED, "{analysis}: {v}");
+        let id = v["id"].as_str().unwrap().to_string();
+        let done = wait_for(&app, &id, finished, Duration::from_secs(120)).await;
+        assert_eq!(done["status"], "succeeded", "{analysis}: {done}");
+        let uri = format!("/v1/jobs/{id}/result");
+        let (status, _) = json_call(&app, "GET", &uri, None).await;
+        assert_eq!(status, StatusCode::OK, "{analysis}");
+        // The stored result is read back into its type and rendered in the other formats.
+        let (status, headers, body) = call(&app, "GET", &uri, None, Some(accept)).await;
+        assert_eq!(status, StatusCode::OK, "{analysis} as {accept}");
+        let ctype = headers[header::CONTENT_TYPE].to_str().unwrap();
+        assert!(ctype.starts_with(accept), "{analysis}: {ctype}");
+        assert!(body.len() > 200, "{analysis}: {} bytes", body.len());
+    }
+}

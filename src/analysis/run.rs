@@ -2,6 +2,11 @@
 //! point of the numerics for the service (which converts the outcome to wire types).
 
 use super::AnalysisError;
+use super::audit::critical_map::{self, CriticalMap};
+use super::audit::frequency::{self, Excitation};
+use super::audit::level1::{self, ForwardPole, Level1};
+use super::audit::peaks::{self, Peak};
+use super::audit::statics::{self, Held, StaticResult};
 use super::campbell::{self, CampbellResult};
 use super::control::Control;
 use super::modal::{self, ModalResult};
@@ -35,8 +40,40 @@ pub enum Outcome {
         nodes: Vec<usize>,
         /// The orbit of each node at each speed.
         response: Vec<Vec<Orbit>>,
+        /// The peaks of each node's amplitude (semi-major axis).
+        peaks: Vec<Vec<Peak>>,
+        range: Option<(f64, f64)>,
         model: &'static str,
     },
+    CriticalMap {
+        stiffness: Vec<f64>,
+        map: CriticalMap,
+    },
+    Static {
+        result: StaticResult,
+        gravity: f64,
+        rigid: bool,
+    },
+    Level1 {
+        speed: f64,
+        at: Vec<(usize, f64)>,
+        qs: Vec<f64>,
+        result: Level1,
+        /// q_A and the first forward mode there.
+        qa: Option<(f64, ForwardPole)>,
+        model: &'static str,
+    },
+    Frequency {
+        speed: f64,
+        input: (usize, Excitation),
+        output: usize,
+        frequencies: Vec<f64>,
+        response: Vec<Orbit>,
+        model: &'static str,
+    },
+    /// The report's parts, in the order of its plan: map, static, Campbell, unbalance, then
+    /// per compared model its Campbell, Level I and unbalance.
+    Report(Vec<Outcome>),
 }
 
 /// Why a valid request could not be analysed.
@@ -172,6 +209,7 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
             speeds,
             unbalances,
             nodes,
+            range,
         } => {
             let (system, damped) = build(model)?;
             let dof = |n: usize| time::translation(&system, n);
@@ -192,12 +230,152 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                 &dofs,
                 control,
             )?;
+            let grid = speeds.as_slice();
+            let peaks = dofs
+                .iter()
+                .enumerate()
+                .map(|(k, &d)| {
+                    let amp: Vec<f64> = response.iter().map(|o| o[k].major()).collect();
+                    let mut eval = |w: f64| -> Result<f64, AnalysisError> {
+                        control.check()?;
+                        let o = unbalance::unbalance_response(
+                            &system,
+                            &damped,
+                            &[w],
+                            &loads,
+                            &[d],
+                            &Control::default(),
+                        )?;
+                        Ok(o[0][0].major())
+                    };
+                    peaks::peaks(grid, &amp, &mut eval)
+                })
+                .collect::<Result<Vec<_>, _>>()?;
             Ok(Outcome::Unbalance {
-                speeds: speeds.as_slice().to_vec(),
+                speeds: grid.to_vec(),
                 nodes: nodes.clone(),
+                response,
+                peaks,
+                range: *range,
+                model: model.damping.name(),
+            })
+        }
+        TaskKind::CriticalMap {
+            rotor,
+            stiffness,
+            modes,
+        } => Ok(Outcome::CriticalMap {
+            map: critical_map::critical_speed_map(rotor, stiffness, *modes, control)?,
+            stiffness: stiffness.clone(),
+        }),
+        TaskKind::Static {
+            rotor,
+            gravity,
+            rigid,
+            speed,
+        } => {
+            let held = if *rigid {
+                Held::Rigid
+            } else {
+                Held::Elastic { speed: *speed }
+            };
+            let result =
+                statics::static_deflection(rotor, *gravity, held).map_err(|e| match e {
+                    AnalysisError::Linalg(_) => RunError::Invalid(Invalid::one(
+                        "rotor.supports",
+                        "the supports do not hold the shaft (its stiffness matrix is singular)",
+                    )),
+                    e => e.into(),
+                })?;
+            Ok(Outcome::Static {
+                result,
+                gravity: *gravity,
+                rigid: *rigid,
+            })
+        }
+        TaskKind::Level1 {
+            model,
+            speed,
+            at,
+            qs,
+            qa,
+        } => {
+            let system = assemble(model)?;
+            let placing: Vec<(usize, f64)> = at
+                .iter()
+                .map(|&(n, w)| (time::translation(&system, n), w))
+                .collect();
+            let result = level1::level1(&system, &model.damping, *speed, &placing, qs, control)
+                .map_err(|e| rigid_body(e, &model.rotor))?;
+            let qa = match qa {
+                Some(q) => Some((
+                    *q,
+                    level1::first_forward(&system, &model.damping, *speed, &placing, *q)?,
+                )),
+                None => None,
+            };
+            Ok(Outcome::Level1 {
+                speed: *speed,
+                at: at.clone(),
+                qs: qs.clone(),
+                result,
+                qa,
+                model: model.damping.name(),
+            })
+        }
+        TaskKind::Frequency {
+            model,
+            speed,
+            input,
+            output,
+            frequencies,
+        } => {
+            let (system, damped) = build(model)?;
+            let dof = |n: usize| time::translation(&system, n);
+            let response = frequency::frequency_response(
+                &system,
+                &damped,
+                *speed,
+                (dof(input.0), input.1),
+                dof(*output),
+                frequencies,
+                control,
+            )?;
+            Ok(Outcome::Frequency {
+                speed: *speed,
+                input: *input,
+                output: *output,
+                frequencies: frequencies.clone(),
                 response,
                 model: model.damping.name(),
             })
         }
+        TaskKind::Report(plan) => {
+            let mut parts = vec![
+                run(&plan.map, control)?,
+                run(&plan.statics, control)?,
+                run(&plan.campbell, control)?,
+                run(&plan.unbalance, control)?,
+            ];
+            for m in &plan.models {
+                let level1 = run(&m.level1, control)?;
+                if m.primary {
+                    parts.extend([parts[2].clone(), level1, parts[3].clone()]);
+                } else {
+                    parts.push(run(&m.campbell, control)?);
+                    parts.push(level1);
+                    parts.push(run(&m.unbalance, control)?);
+                }
+            }
+            Ok(Outcome::Report(parts))
+        }
+    }
+}
+
+/// A damping model that cannot be built because the rotor floats is an invalid input.
+fn rigid_body(e: AnalysisError, rotor: &Rotor) -> RunError {
+    match e {
+        AnalysisError::Damping(d) => damping_error(d, rotor),
+        e => e.into(),
     }
 }

@@ -17,10 +17,11 @@
 //! which the rotor sees at `2 Omega`, the rotating loss too).
 
 use super::AnalysisError;
+use super::audit::frequency::{Harmonic, harmonic};
 use super::control::Control;
-use crate::damping::{DampedModel, ModelKind};
-use crate::linalg::{self, CMat, c64};
-use crate::system::{Realized, RotorSystem};
+use crate::damping::DampedModel;
+use crate::linalg::c64;
+use crate::system::RotorSystem;
 use rayon::prelude::*;
 
 /// An unbalance for the steady response.
@@ -70,73 +71,17 @@ pub fn unbalance_response(
         .par_iter()
         .map(|&w| {
             control.check()?;
-            let mut f = vec![c64::new(0.0, 0.0); n];
-            for u in unbalances {
-                f[u.dof] += c64::from_polar(u.amount * w * w, u.phase);
-            }
-            let r = Realized::at(system, w);
-            let big = r.size();
-            let q: Vec<c64> = match &model.kind {
-                ModelKind::Linear(state) => {
-                    let size = state.size();
-                    let a = state.at(w);
-                    let lhs = CMat::from_fn(size, size, |i, j| {
-                        let diag = if i == j {
-                            c64::new(0.0, w)
-                        } else {
-                            c64::new(0.0, 0.0)
-                        };
-                        diag - a[(i, j)]
-                    });
-                    let fm =
-                        CMat::from_fn(big, 1, |i, _| if i < n { f[i] } else { c64::new(0.0, 0.0) });
-                    let minv_f = linalg::mass_solve(&r.mass, &fm)?;
-                    let rhs = CMat::from_fn(size, 1, |i, _| {
-                        if i < big {
-                            minv_f[(i, 0)]
-                        } else {
-                            c64::new(0.0, 0.0)
-                        }
-                    });
-                    let z = linalg::solve_complex(&lhs, &rhs)?;
-                    (0..big).map(|i| z[(big + i, 0)]).collect()
-                }
-                ModelKind::Hysteretic(_) => {
-                    // -W^2 M + i W (C_n + C_r) + W^2 S G + K - i W S C_r + i sgn(W) K''_n
-                    // + i diag(sgn(W - W) = 0 on r, sgn(2 W) on conj r) K''_r.
-                    let sg = r.spun(&r.gyroscopic);
-                    let scr = r.spun(&r.damping_rotating);
-                    let s = if w > 0.0 { 1.0 } else { 0.0 };
-                    let i1 = c64::new(0.0, 1.0);
-                    let lhs = CMat::from_fn(big, big, |a, b| {
-                        let rot = if r.spin[a] > 0.0 { 0.0 } else { s };
-                        r.mass[(a, b)] * (-w * w)
-                            + (r.damping_nonrotating[(a, b)] + r.damping_rotating[(a, b)])
-                                * (i1 * w)
-                            + sg[(a, b)] * (w * w)
-                            + r.stiffness[(a, b)]
-                            - scr[(a, b)] * (i1 * w)
-                            + r.loss_nonrotating[(a, b)] * (i1 * s)
-                            + r.loss_rotating[(a, b)] * (i1 * rot)
-                    });
-                    let rhs =
-                        CMat::from_fn(big, 1, |i, _| if i < n { f[i] } else { c64::new(0.0, 0.0) });
-                    let z = linalg::solve_complex(&lhs, &rhs)?;
-                    (0..big).map(|i| z[(i, 0)]).collect()
-                }
+            let zero = c64::new(0.0, 0.0);
+            let mut force = Harmonic {
+                forward: vec![zero; n],
+                backward: vec![zero; n],
             };
+            for u in unbalances {
+                force.forward[u.dof] += c64::from_polar(u.amount * w * w, u.phase);
+            }
+            let orbits = harmonic(system, model, w, w, &force, out)?;
             control.advance(1);
-            Ok(out
-                .iter()
-                .map(|&d| Orbit {
-                    a: q[d],
-                    b: if big > n {
-                        q[n + d]
-                    } else {
-                        c64::new(0.0, 0.0)
-                    },
-                })
-                .collect())
+            Ok(orbits)
         })
         .collect()
 }

@@ -28,8 +28,9 @@ pub fn section(e: &ShaftElement) -> Section {
     }
 }
 
-/// Assembles (and reduces, if asked) a beam rotor.
-pub fn beam(rotor: &BeamRotor) -> Result<RotorSystem, LinalgError> {
+/// The shaft and disks of a beam rotor alone: no supports, no reduction (2 complex degrees of
+/// freedom per node). What the audit analyses replace the supports on.
+pub fn beam_shaft(rotor: &BeamRotor) -> RotorSystem {
     let nodes = rotor.nodes();
     let n = 2 * nodes;
     let z = || RMat::zeros(n, n);
@@ -68,6 +69,12 @@ pub fn beam(rotor: &BeamRotor) -> Result<RotorSystem, LinalgError> {
         s.mass[(phi, phi)] += d.transverse_inertia;
         s.gyroscopic[(phi, phi)] += d.polar_inertia;
     }
+    s
+}
+
+/// Assembles (and reduces, if asked) a beam rotor.
+pub fn beam(rotor: &BeamRotor) -> Result<RotorSystem, LinalgError> {
+    let mut s = beam_shaft(rotor);
     for sup in rotor.supports() {
         let r = 2 * sup.node;
         s.stiffness_nonrotating[(r, r)] += sup.stiffness;

@@ -128,6 +128,8 @@ pub struct Disk {
 /// An isotropic support on a translation.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Support {
+    /// Its position in the request's `supports`.
+    pub index: usize,
     pub node: usize,
     pub stiffness: f64,
     pub damping: f64,
@@ -173,6 +175,7 @@ pub fn parse_supports(
         );
         if let (Some(node), Some(k), Some(c), Some(eta)) = (node, k, c, eta) {
             isotropic.push(Support {
+                index: i,
                 node,
                 stiffness: k,
                 damping: c,

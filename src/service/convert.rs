@@ -365,6 +365,7 @@ pub fn unbalance_response(
                 y_phase: column(k, &|o| o.xy()[1].arg()),
                 major: column(k, &|o| o.major()),
                 minor: column(k, &|o| o.minor()),
+                peaks: vec![],
             })
             .collect(),
         note: note.into(),

@@ -76,6 +76,11 @@ pub fn job_input(analysis: AnalysisName, input: Value) -> Result<JobInput, ApiEr
         AnalysisName::Damping => JobInput::Damping(from_value(input)?),
         AnalysisName::TimeResponse => JobInput::Time(from_value(input)?),
         AnalysisName::UnbalanceResponse => JobInput::Unbalance(from_value(input)?),
+        AnalysisName::CriticalSpeedMap => JobInput::CriticalMap(from_value(input)?),
+        AnalysisName::Static => JobInput::Static(from_value(input)?),
+        AnalysisName::Level1 => JobInput::Level1(from_value(input)?),
+        AnalysisName::FrequencyResponse => JobInput::Frequency(from_value(input)?),
+        AnalysisName::Report => JobInput::Report(Box::new(from_value(input)?)),
     })
 }
 

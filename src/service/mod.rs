@@ -8,15 +8,19 @@
 
 pub mod config;
 pub mod convert;
+pub mod convert_audit;
 pub mod error;
 pub mod jobs;
 pub mod json;
 pub mod metrics;
 pub mod openapi;
 pub mod plot;
+pub mod plot_audit;
 pub mod pool;
+pub mod report;
 pub mod results;
 pub mod routes;
+pub mod routes_audit;
 pub mod runner;
 pub mod server;
 pub mod store;
@@ -102,6 +106,11 @@ pub fn router(state: AppState) -> (Router, utoipa::openapi::OpenApi) {
         .routes(utoipa_axum::routes!(routes::damping_matrices))
         .routes(utoipa_axum::routes!(routes::time_response))
         .routes(utoipa_axum::routes!(routes::unbalance_response))
+        .routes(utoipa_axum::routes!(routes_audit::critical_speed_map))
+        .routes(utoipa_axum::routes!(routes_audit::static_deflection))
+        .routes(utoipa_axum::routes!(routes_audit::level1))
+        .routes(utoipa_axum::routes!(routes_audit::frequency_response))
+        .routes(utoipa_axum::routes!(routes_audit::report))
         .routes(utoipa_axum::routes!(routes::submit_job))
         .routes(utoipa_axum::routes!(routes::get_job, routes::cancel_job))
         .routes(utoipa_axum::routes!(routes::job_result))

@@ -7,10 +7,10 @@ use crate::model::api::{
     CampbellResponse, StabilityResponse, TimeResponseResponse, UnbalanceResponseResponse, Whirl,
 };
 
-const RPM: f64 = 60.0 / (2.0 * std::f64::consts::PI);
+pub(crate) const RPM: f64 = 60.0 / (2.0 * std::f64::consts::PI);
 const FORWARD: RGBColor = RGBColor(31, 119, 180);
 const BACKWARD: RGBColor = RGBColor(214, 39, 40);
-const PALETTE: [RGBColor; 6] = [
+pub(crate) const PALETTE: [RGBColor; 6] = [
     RGBColor(31, 119, 180),
     RGBColor(214, 39, 40),
     RGBColor(44, 160, 44),
@@ -19,10 +19,13 @@ const PALETTE: [RGBColor; 6] = [
     RGBColor(23, 190, 207),
 ];
 
+/// Fill of a shaded operating range.
+pub(crate) const SHADE: RGBAColor = RGBAColor(255, 170, 40, 0.22);
+
 type Err = Box<dyn std::error::Error>;
 
 /// `[lo, hi]` of finite values, padded; a flat or empty set gets a unit range.
-fn range(values: impl Iterator<Item = f64>, pad: f64) -> (f64, f64) {
+pub(crate) fn range(values: impl Iterator<Item = f64>, pad: f64) -> (f64, f64) {
     let (lo, hi) = values
         .filter(|v| v.is_finite())
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
@@ -36,7 +39,7 @@ fn range(values: impl Iterator<Item = f64>, pad: f64) -> (f64, f64) {
 }
 
 /// Runs of consecutive defined points (a `null` breaks the line).
-fn runs(xs: &[f64], ys: &[Option<f64>]) -> Vec<Vec<(f64, f64)>> {
+pub(crate) fn runs(xs: &[f64], ys: &[Option<f64>]) -> Vec<Vec<(f64, f64)>> {
     let mut out = vec![vec![]];
     for (x, y) in xs.iter().zip(ys) {
         match y {
@@ -53,7 +56,7 @@ fn runs(xs: &[f64], ys: &[Option<f64>]) -> Vec<Vec<(f64, f64)>> {
 }
 
 /// The series legend, boxed, at `pos`.
-fn legend<'a, DB: DrawingBackend + 'a, CT>(
+pub(crate) fn legend<'a, DB: DrawingBackend + 'a, CT>(
     chart: &mut ChartContext<'a, DB, CT>,
     pos: SeriesLabelPosition,
 ) -> Result<(), Err>
@@ -97,6 +100,41 @@ where
 
 /// Campbell diagram (|frequency| against speed) over the decay-rate plot.
 pub fn campbell(c: &CampbellResponse) -> Result<String, Err> {
+    campbell_with(c, None)
+}
+
+/// `[lo, hi]` clipped to `[x0, x1]`, if they overlap.
+fn clip(shade: Option<[f64; 2]>, x0: f64, x1: f64) -> Option<(f64, f64)> {
+    let [lo, hi] = shade?;
+    let (lo, hi) = (lo.min(hi).max(x0), hi.max(lo).min(x1));
+    (lo.is_finite() && hi.is_finite() && hi > lo).then_some((lo, hi))
+}
+
+/// A vertical band `[lo, hi]` of x over `[y0, y1]`, labelled for the legend when `label`.
+fn band<DB: DrawingBackend, CT>(
+    chart: &mut ChartContext<'_, DB, CT>,
+    (lo, hi): (f64, f64),
+    (y0, y1): (f64, f64),
+    label: bool,
+) -> Result<(), Err>
+where
+    CT: plotters::coord::CoordTranslate<From = (f64, f64)>,
+    DB::ErrorType: 'static,
+{
+    let series = chart.draw_series(std::iter::once(Rectangle::new(
+        [(lo, y0), (hi, y1)],
+        SHADE.filled(),
+    )))?;
+    if label {
+        series
+            .label("operating range")
+            .legend(|(x, y)| Rectangle::new([(x, y - 5), (x + 20, y + 5)], SHADE.filled()));
+    }
+    Ok(())
+}
+
+/// [`campbell`] with the operating speeds `shade = [min, max]` (rad/s) shaded.
+pub fn campbell_with(c: &CampbellResponse, shade: Option<[f64; 2]>) -> Result<String, Err> {
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (960, 900)).into_drawing_area();
@@ -136,6 +174,10 @@ pub fn campbell(c: &CampbellResponse) -> Result<String, Err> {
             .x_label_formatter(&|v| format!("{v:.0}"))
             .y_labels(0)
             .draw()?;
+        let shade = clip(shade, x0, x1);
+        if let Some(s) = shade {
+            band(&mut chart, s, (0.0, f_hi), true)?;
+        }
         // The 1x line: synchronous excitation.
         chart
             .draw_series(LineSeries::new(
@@ -169,6 +211,9 @@ pub fn campbell(c: &CampbellResponse) -> Result<String, Err> {
             .x_label_formatter(&|v| format!("{v:.0}"))
             .light_line_style(RGBColor(235, 235, 235))
             .draw()?;
+        if let Some(s) = shade {
+            band(&mut chart, s, (d_lo, d_hi), false)?;
+        }
         chart.draw_series(LineSeries::new(
             vec![(x0, 0.0), (x1, 0.0)],
             BLACK.stroke_width(1),
@@ -243,6 +288,11 @@ where
 
 /// Largest decay rate against speed, the threshold marked.
 pub fn stability(s: &StabilityResponse) -> Result<String, Err> {
+    stability_with(s, None)
+}
+
+/// [`stability`] with the operating speeds `shade = [min, max]` (rad/s) shaded.
+pub fn stability_with(s: &StabilityResponse, shade: Option<[f64; 2]>) -> Result<String, Err> {
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (960, 520)).into_drawing_area();
@@ -273,6 +323,10 @@ pub fn stability(s: &StabilityResponse) -> Result<String, Err> {
             .x_label_formatter(&|v| format!("{v:.0}"))
             .y_labels(0)
             .draw()?;
+        let shade = clip(shade, x0, x1);
+        if let Some(b) = shade {
+            band(&mut chart, b, (y0, y1), true)?;
+        }
         chart.draw_series(LineSeries::new(
             vec![(x0, 0.0), (x1, 0.0)],
             BLACK.stroke_width(1),
@@ -289,6 +343,8 @@ pub fn stability(s: &StabilityResponse) -> Result<String, Err> {
                 .draw_series(LineSeries::new(vec![(t, y0), (t, y1)], RED.stroke_width(2)))?
                 .label(format!("threshold {t:.2} rad/s ({:.0} rpm)", t * RPM))
                 .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RED.stroke_width(2)));
+        }
+        if s.threshold.is_some() || shade.is_some() {
             legend(&mut chart, SeriesLabelPosition::UpperRight)?;
         }
         root.present()?;

@@ -22,7 +22,7 @@ use crate::model::api::{
 /// The errors every analysis endpoint may answer, as problem+json.
 #[derive(utoipa::IntoResponses)]
 #[allow(dead_code)] // only read by the OpenAPI derive
-enum AnalysisErrors {
+pub(super) enum AnalysisErrors {
     #[response(
         status = 400,
         description = "Malformed JSON",

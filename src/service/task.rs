@@ -9,16 +9,20 @@ use std::sync::Arc;
 
 use super::AppState;
 use super::convert;
+use super::convert_audit;
 use super::error::ApiError;
 use super::plot;
+use super::plot_audit;
 use crate::analysis::control::Control;
 use crate::analysis::run::{Outcome, run};
 use crate::model::Task;
 use crate::model::api::{
-    CampbellResponse, DampingMatricesResponse, ModalResponse, StabilityResponse,
+    CampbellResponse, CriticalSpeedMapResponse, DampingMatricesResponse, FrequencyResponseResponse,
+    Level1Response, ModalResponse, ReportResponse, StabilityResponse, StaticResponse,
     TimeResponseResponse, UnbalanceResponseResponse,
 };
 use crate::model::limits::BYTES_PER_VALUE;
+use crate::model::task::TaskKind;
 
 /// The result of an analysis, as its endpoint returns it.
 #[derive(Debug, Clone, Serialize)]
@@ -30,11 +34,17 @@ pub enum Output {
     Damping(Box<DampingMatricesResponse>),
     Time(TimeResponseResponse),
     Unbalance(UnbalanceResponseResponse),
+    CriticalMap(CriticalSpeedMapResponse),
+    Static(StaticResponse),
+    Level1(Level1Response),
+    Frequency(FrequencyResponseResponse),
+    Report(Box<ReportResponse>),
 }
 
-impl From<Outcome> for Output {
-    fn from(o: Outcome) -> Self {
-        match o {
+impl Output {
+    /// The wire form of an outcome of `task`.
+    fn of(o: Outcome, task: &Task) -> Result<Self, ApiError> {
+        Ok(match o {
             Outcome::Modal(r) => Output::Modal(convert::modal(&r)),
             Outcome::Campbell(r) => Output::Campbell(convert::campbell(&r)),
             Outcome::Stability {
@@ -58,11 +68,68 @@ impl From<Outcome> for Output {
                 speeds,
                 nodes,
                 response,
+                peaks,
+                range,
                 model,
-            } => Output::Unbalance(convert::unbalance_response(
-                &speeds, &nodes, &response, model,
+            } => {
+                let mut u = convert::unbalance_response(&speeds, &nodes, &response, model);
+                for (n, p) in u.nodes.iter_mut().zip(&peaks) {
+                    n.peaks = convert_audit::peaks(p, range);
+                }
+                Output::Unbalance(u)
+            }
+            Outcome::CriticalMap { stiffness, map } => {
+                Output::CriticalMap(convert_audit::critical_map(&stiffness, &map))
+            }
+            Outcome::Static {
+                result,
+                gravity,
+                rigid,
+            } => Output::Static(convert_audit::statics(&result, gravity, rigid)),
+            Outcome::Level1 {
+                speed,
+                at,
+                qs,
+                result,
+                qa,
+                model,
+            } => Output::Level1(convert_audit::level1(speed, &at, &qs, &result, qa, model)),
+            Outcome::Frequency {
+                speed,
+                input,
+                output,
+                frequencies,
+                response,
+                model,
+            } => Output::Frequency(convert_audit::frequency(
+                speed,
+                input,
+                output,
+                &frequencies,
+                &response,
+                model,
             )),
-        }
+            Outcome::Report(parts) => {
+                let TaskKind::Report(plan) = &task.kind else {
+                    return Err(ApiError::Internal(
+                        "a report outcome of another task".into(),
+                    ));
+                };
+                let tasks = plan.tasks();
+                let parts = parts
+                    .into_iter()
+                    .zip(tasks)
+                    .map(|(o, t)| {
+                        let mut out = Output::of(o, t)?;
+                        out.set_warnings(t.warnings.clone());
+                        Ok(out)
+                    })
+                    .collect::<Result<Vec<_>, ApiError>>()?;
+                Output::Report(Box::new(
+                    convert_audit::report(parts, plan).map_err(ApiError::Internal)?,
+                ))
+            }
+        })
     }
 }
 
@@ -77,6 +144,11 @@ impl Output {
             "damping" => Output::Damping(Box::new(serde_json::from_slice(json).map_err(bad)?)),
             "time-response" => Output::Time(serde_json::from_slice(json).map_err(bad)?),
             "unbalance-response" => Output::Unbalance(serde_json::from_slice(json).map_err(bad)?),
+            "critical-speed-map" => Output::CriticalMap(serde_json::from_slice(json).map_err(bad)?),
+            "static" => Output::Static(serde_json::from_slice(json).map_err(bad)?),
+            "level1" => Output::Level1(serde_json::from_slice(json).map_err(bad)?),
+            "frequency-response" => Output::Frequency(serde_json::from_slice(json).map_err(bad)?),
+            "report" => Output::Report(Box::new(serde_json::from_slice(json).map_err(bad)?)),
             other => return Err(ApiError::Internal(format!("unknown analysis {other}"))),
         })
     }
@@ -89,6 +161,11 @@ impl Output {
             Output::Damping(o) => o.warnings = w,
             Output::Time(o) => o.warnings = w,
             Output::Unbalance(o) => o.warnings = w,
+            Output::CriticalMap(o) => o.warnings = w,
+            Output::Static(o) => o.warnings = w,
+            Output::Level1(o) => o.warnings = w,
+            Output::Frequency(o) => o.warnings = w,
+            Output::Report(o) => o.warnings = w,
         }
     }
 
@@ -104,7 +181,7 @@ impl Output {
 
 /// Runs a task to its output, refusing an answer beyond `max_bytes`.
 pub fn execute(task: &Task, control: &Control, max_bytes: u64) -> Result<Output, ApiError> {
-    let mut out = Output::from(run(task, control)?);
+    let mut out = Output::of(run(task, control)?, task)?;
     out.set_warnings(task.warnings.clone());
     let bytes = out.values() * BYTES_PER_VALUE;
     if bytes > max_bytes {
@@ -124,6 +201,7 @@ pub enum Format {
     Json,
     Csv,
     Svg,
+    Html,
 }
 
 impl Format {
@@ -132,6 +210,7 @@ impl Format {
             Format::Json => "application/json",
             Format::Csv => "text/csv",
             Format::Svg => "image/svg+xml",
+            Format::Html => "text/html; charset=utf-8",
         }
     }
 }
@@ -157,7 +236,8 @@ pub fn negotiate(headers: &HeaderMap) -> Result<Vec<Format>, ApiError> {
                 &[Format::Json]
             }
             "text/csv" => &[Format::Csv],
-            "text/*" => &[Format::Csv],
+            "text/html" | "application/xhtml+xml" => &[Format::Html],
+            "text/*" => &[Format::Csv, Format::Html],
             "image/svg+xml" | "image/*" => &[Format::Svg],
             _ => &[],
         };
@@ -167,7 +247,9 @@ pub fn negotiate(headers: &HeaderMap) -> Result<Vec<Format>, ApiError> {
     let out: Vec<Format> = ranked.into_iter().map(|r| r.2).collect();
     if out.is_empty() {
         return Err(ApiError::NotAcceptable(
-            "this API answers application/json, text/csv or image/svg+xml".into(),
+            "this API answers application/json, text/csv, image/svg+xml or (the report) \
+             text/html"
+                .into(),
         ));
     }
     Ok(out)
@@ -261,6 +343,7 @@ pub fn render(out: &Output, formats: &[Format]) -> Result<Rendered, ApiError> {
             }
             Format::Csv => csv(out).map(String::into_bytes),
             Format::Svg => svg(out)?.map(String::into_bytes),
+            Format::Html => html(out)?.map(String::into_bytes),
         };
         if let Some(body) = body {
             return Ok(Rendered {
@@ -280,17 +363,29 @@ fn supported(out: &Output) -> Vec<&'static str> {
     if csv_supported(out) {
         v.push("text/csv");
     }
-    if matches!(
+    if !matches!(
         out,
-        Output::Campbell(_) | Output::Stability(_) | Output::Time(_) | Output::Unbalance(_)
+        Output::Modal(_) | Output::Damping(_) | Output::Report(_)
     ) {
         v.push("image/svg+xml");
+    }
+    if matches!(out, Output::Report(_)) {
+        v.push("text/html");
     }
     v
 }
 
 fn csv_supported(out: &Output) -> bool {
-    !matches!(out, Output::Damping(_))
+    !matches!(out, Output::Damping(_) | Output::Report(_))
+}
+
+fn html(out: &Output) -> Result<Option<String>, ApiError> {
+    match out {
+        Output::Report(r) => super::report::html(r, &r.rotor)
+            .map(Some)
+            .map_err(|e| ApiError::Internal(format!("report page: {e}"))),
+        _ => Ok(None),
+    }
 }
 
 fn svg(out: &Output) -> Result<Option<String>, ApiError> {
@@ -299,6 +394,10 @@ fn svg(out: &Output) -> Result<Option<String>, ApiError> {
         Output::Stability(s) => plot::stability(s),
         Output::Time(t) => plot::time(t),
         Output::Unbalance(u) => plot::unbalance(u),
+        Output::CriticalMap(c) => plot_audit::critical_speed_map(c),
+        Output::Static(s) => plot_audit::static_deflection(s),
+        Output::Level1(l) => plot_audit::level1(l),
+        Output::Frequency(f) => plot_audit::frequency_response(f),
         _ => return Ok(None),
     };
     r.map(Some)
@@ -409,7 +508,72 @@ pub fn csv(out: &Output) -> Option<String> {
                 s.push('\n');
             }
         }
-        Output::Damping(_) => return None,
+        Output::CriticalMap(c) => {
+            s.push_str("stiffness");
+            for k in 1..=c.frequencies.len() {
+                s.push_str(&format!(",mode{k}_frequency"));
+            }
+            s.push('\n');
+            for (i, k) in c.stiffness.iter().enumerate() {
+                s.push_str(&format!("{k}"));
+                for f in &c.frequencies {
+                    s.push_str(&format!(",{}", f[i]));
+                }
+                s.push('\n');
+            }
+        }
+        Output::Static(st) => {
+            s.push_str("node,position,deflection,deflection_x,reaction,reaction_x\n");
+            for n in &st.nodes {
+                let r = st.supports.iter().filter(|r| r.node == n.node);
+                let (ry, rx) = r.fold((None, None), |(y, x), r| {
+                    (
+                        Some(y.unwrap_or(0.0) + r.reaction),
+                        Some(x.unwrap_or(0.0) + r.reaction_x),
+                    )
+                });
+                s.push_str(&format!(
+                    "{},{},{},{},{},{}\n",
+                    n.node,
+                    n.position,
+                    n.deflection,
+                    n.deflection_x,
+                    num(ry),
+                    num(rx)
+                ));
+            }
+        }
+        Output::Level1(l) => {
+            s.push_str("cross_coupling,log_decrement,frequency\n");
+            for (i, q) in l.cross_coupling.iter().enumerate() {
+                s.push_str(&format!(
+                    "{q},{},{}\n",
+                    num(l.log_decrement[i]),
+                    num(l.frequency[i])
+                ));
+            }
+        }
+        Output::Frequency(f) => {
+            s.push_str(
+                "frequency,amplitude,phase,x_amplitude,x_phase,y_amplitude,y_phase,forward,\
+                 backward\n",
+            );
+            for i in 0..f.frequencies.len() {
+                s.push_str(&format!(
+                    "{},{},{},{},{},{},{},{},{}\n",
+                    f.frequencies[i],
+                    f.amplitude[i],
+                    f.phase[i],
+                    f.x_amplitude[i],
+                    f.x_phase[i],
+                    f.y_amplitude[i],
+                    f.y_phase[i],
+                    f.forward[i],
+                    f.backward[i]
+                ));
+            }
+        }
+        Output::Damping(_) | Output::Report(_) => return None,
     }
     Some(s)
 }

@@ -1,8 +1,33 @@
 //! The undamped critical speed map (ROSS's `run_ucs`).
+//!
+//! The full beam (two complex degrees of freedom per node, never Guyan-reduced) at zero speed,
+//! with every support replaced by the same isotropic undamped spring `k` on its node's
+//! translation (no damping, no support mass, no cross-coupling):
+//!
+//! ```text
+//! (K_shaft + k E) phi = w^2 M phi,    E = sum over supports of e_t e_t^T
+//! ```
+//!
+//! In complex coordinates an eigenpair of this real symmetric pencil is one degenerate x/y
+//! pair of the real 4 dof/node model, so the lowest `modes` eigenvalues are the `modes` lowest
+//! distinct natural frequencies `w = sqrt(w^2)` (ROSS's `wn[::2]`).
+//!
+//! Intersections, for every support and its `kxx` (and `kyy`, when different) coefficient:
+//! - constant `k_s > 0`: the mode's frequency at `k = k_s`, from the eigenproblem at `k_s`
+//!   (not read off the sampled curve);
+//! - tabulated against speed (`k(w)` linear between table speeds, held outside): every speed
+//!   `w` with `w_m(k(w)) = w`, a critical speed on the support's own stiffness. Outside the
+//!   table `k` is held, so the root there is `w_m(k_end)` when it lies outside; inside, each
+//!   table segment is scanned at a few points for sign changes of `g(w) = w_m(k(w)) - w` and
+//!   each bracket is closed by Brent's method to 1e-10 relative. Since `g(0) >= 0` and `g`
+//!   falls as `-w` beyond the table, every mode has at least one such speed.
 
 use crate::analysis::AnalysisError;
 use crate::analysis::control::Control;
+use crate::fem::assembly;
+use crate::linalg::{self, RMat};
 use crate::model::rotor::BeamRotor;
+use crate::model::supports::{GeneralSupport, Law, Matrix2};
 
 /// Where a mode meets a support's actual stiffness.
 #[derive(Debug, Clone, PartialEq)]
@@ -25,14 +50,270 @@ pub struct CriticalMap {
     pub intersections: Vec<Intersection>,
 }
 
+/// Sub-intervals per table segment scanned for sign changes: within a segment `k` is linear
+/// in `w`, and `g` is concave for the first mode (at most two roots), nearly so for the others.
+const SCAN: usize = 4;
+/// Relative tolerance of a critical speed found on a tabulated coefficient.
+const TOL: f64 = 1e-10;
+
 /// The lowest `modes` undamped natural frequencies at zero speed (one per degenerate pair)
 /// with every support replaced by an isotropic undamped spring of each `stiffness`.
+/// `modes` is capped at the number of complex degrees of freedom (two per node).
 pub fn critical_speed_map(
     rotor: &BeamRotor,
     stiffness: &[f64],
     modes: usize,
     control: &Control,
 ) -> Result<CriticalMap, AnalysisError> {
-    let _ = (rotor, stiffness, modes, control);
-    todo!()
+    let map = Springs::new(rotor, modes);
+    let curves = curves(rotor);
+    control.expect((stiffness.len() + curves.len()) as u64);
+    let mut frequencies = vec![Vec::with_capacity(stiffness.len()); map.modes];
+    for &k in stiffness {
+        control.check()?;
+        for (f, w) in frequencies.iter_mut().zip(map.at(k)?) {
+            f.push(w);
+        }
+        control.advance(1);
+    }
+    let mut intersections = vec![];
+    for c in &curves {
+        control.check()?;
+        let found = match c.law {
+            Coefficient::Constant(k) if k > 0.0 => {
+                map.at(k)?.into_iter().map(|w| vec![(k, w)]).collect()
+            }
+            // No spring, no point on the map's (positive) stiffness axis.
+            Coefficient::Constant(_) => vec![],
+            Coefficient::Table(s, pick) => on_table(&map, s, pick, control)?,
+        };
+        for (m, roots) in found.into_iter().enumerate() {
+            intersections.extend(roots.into_iter().map(|(k, w)| Intersection {
+                support: c.support,
+                node: c.node,
+                coefficient: c.name,
+                mode: m + 1,
+                stiffness: k,
+                frequency: w,
+            }));
+        }
+        control.advance(1);
+    }
+    // ROSS's order for one support: mode, then coefficient.
+    intersections.sort_by_key(|i| (i.support, i.mode, i.coefficient != "kxx"));
+    Ok(CriticalMap {
+        frequencies,
+        intersections,
+    })
+}
+
+/// The shaft with one spring `k` per support on its translation.
+struct Springs {
+    k: RMat,
+    m: RMat,
+    /// Translation dof of each support (repeated if two share a node: they add).
+    dofs: Vec<usize>,
+    modes: usize,
+}
+
+impl Springs {
+    fn new(rotor: &BeamRotor, modes: usize) -> Self {
+        let s = assembly::beam_shaft(rotor);
+        let dofs = rotor
+            .supports()
+            .iter()
+            .map(|s| 2 * s.node)
+            .chain(rotor.general_supports().iter().map(|g| 2 * g.node))
+            .collect();
+        Springs {
+            modes: modes.min(s.n()),
+            k: s.stiffness_rotating,
+            m: s.mass,
+            dofs,
+        }
+    }
+
+    /// The lowest natural frequencies with springs `k`. A negative eigenvalue (a tabulated
+    /// `k < 0`) or round-off below a free rigid mode is reported as 0, never NaN.
+    fn at(&self, k: f64) -> Result<Vec<f64>, AnalysisError> {
+        let mut kk = self.k.clone();
+        for &d in &self.dofs {
+            kk[(d, d)] += k;
+        }
+        let w2 = linalg::symmetric_modes(&kk, &self.m)?.omega_squared;
+        Ok(w2
+            .iter()
+            .take(self.modes)
+            .map(|v| v.max(0.0).sqrt())
+            .collect())
+    }
+}
+
+enum Coefficient<'a> {
+    Constant(f64),
+    /// A tabulated support and which coefficient of its stiffness.
+    Table(&'a GeneralSupport, fn(&Matrix2) -> f64),
+}
+
+struct Curve<'a> {
+    support: usize,
+    node: usize,
+    name: &'static str,
+    law: Coefficient<'a>,
+}
+
+/// `kxx` of every support, and `kyy` where it differs.
+fn curves(rotor: &BeamRotor) -> Vec<Curve<'_>> {
+    let mut out: Vec<Curve> = rotor
+        .supports()
+        .iter()
+        .map(|s| Curve {
+            support: s.index,
+            node: s.node,
+            name: "kxx",
+            law: Coefficient::Constant(s.stiffness),
+        })
+        .collect();
+    for g in rotor.general_supports() {
+        let curve = |name, law| Curve {
+            support: g.index,
+            node: g.node,
+            name,
+            law,
+        };
+        match &g.law {
+            Law::Constant(c) => {
+                out.push(curve("kxx", Coefficient::Constant(c.k.xx)));
+                if c.k.yy != c.k.xx {
+                    out.push(curve("kyy", Coefficient::Constant(c.k.yy)));
+                }
+            }
+            Law::Table { values, .. } => {
+                out.push(curve("kxx", Coefficient::Table(g, |k| k.xx)));
+                if values.iter().any(|v| v.k.yy != v.k.xx) {
+                    out.push(curve("kyy", Coefficient::Table(g, |k| k.yy)));
+                }
+            }
+        }
+    }
+    out.sort_by_key(|c| c.support);
+    out
+}
+
+/// Per mode, the `(k(w), w)` with `w_m(k(w)) = w` on a tabulated coefficient, by speed.
+fn on_table(
+    map: &Springs,
+    s: &GeneralSupport,
+    pick: fn(&Matrix2) -> f64,
+    control: &Control,
+) -> Result<Vec<Vec<(f64, f64)>>, AnalysisError> {
+    let k = |w: f64| pick(&s.at(w).k);
+    let speeds = s.speeds();
+    let mut grid = vec![speeds[0]];
+    for p in speeds.windows(2) {
+        grid.extend((1..=SCAN).map(|j| p[0] + (p[1] - p[0]) * j as f64 / SCAN as f64));
+    }
+    // The frequencies at every grid point, all modes from one eigen solve.
+    let mut f = Vec::with_capacity(grid.len());
+    for &w in &grid {
+        control.check()?;
+        f.push(map.at(k(w))?);
+    }
+    let mut out = vec![vec![]; map.modes];
+    let last = grid.len() - 1;
+    for (m, roots) in out.iter_mut().enumerate() {
+        let g = |i: usize| f[i][m] - grid[i];
+        // Below the table k is held at its first value: the root is that frequency itself.
+        if f[0][m] < grid[0] {
+            roots.push((k(grid[0]), f[0][m]));
+        }
+        for i in 0..=last {
+            if g(i) == 0.0 {
+                roots.push((k(grid[i]), grid[i]));
+            } else if i < last && g(i) * g(i + 1) < 0.0 {
+                let h = |w: f64| -> Result<f64, AnalysisError> {
+                    control.check()?;
+                    Ok(map.at(k(w))?[m] - w)
+                };
+                let w = brent(h, grid[i], grid[i + 1], g(i), g(i + 1))?;
+                roots.push((k(w), w));
+            }
+        }
+        if f[last][m] > grid[last] {
+            roots.push((k(grid[last]), f[last][m]));
+        }
+    }
+    Ok(out)
+}
+
+/// Brent's method on a bracket `[a, b]` with `f(a) f(b) < 0`, to `TOL` relative in `w`.
+fn brent(
+    mut f: impl FnMut(f64) -> Result<f64, AnalysisError>,
+    a: f64,
+    b: f64,
+    fa: f64,
+    fb: f64,
+) -> Result<f64, AnalysisError> {
+    let (mut a, mut b, mut fa, mut fb) = (a, b, fa, fb);
+    let (mut c, mut fc) = (a, fa);
+    let (mut d, mut e) = (b - a, b - a);
+    for _ in 0..200 {
+        if fb * fc > 0.0 {
+            (c, fc) = (a, fa);
+            d = b - a;
+            e = d;
+        }
+        if fc.abs() < fb.abs() {
+            (a, b, c) = (b, c, b);
+            (fa, fb, fc) = (fb, fc, fb);
+        }
+        let tol = 0.5 * TOL * b.abs().max(f64::MIN_POSITIVE) + 2.0 * f64::EPSILON * b.abs();
+        let half = 0.5 * (c - b);
+        if half.abs() <= tol || fb == 0.0 {
+            return Ok(b);
+        }
+        if e.abs() >= tol && fa.abs() > fb.abs() {
+            // Inverse quadratic interpolation, or secant with two points.
+            let s = fb / fa;
+            let (mut p, mut q) = if a == c {
+                (2.0 * half * s, 1.0 - s)
+            } else {
+                let (qa, r) = (fa / fc, fb / fc);
+                (
+                    s * (2.0 * half * qa * (qa - r) - (b - a) * (r - 1.0)),
+                    (qa - 1.0) * (r - 1.0) * (s - 1.0),
+                )
+            };
+            if p > 0.0 {
+                q = -q;
+            }
+            p = p.abs();
+            if 2.0 * p < (3.0 * half * q - (tol * q).abs()).min((e * q).abs()) {
+                e = d;
+                d = p / q;
+            } else {
+                d = half;
+                e = d;
+            }
+        } else {
+            d = half;
+            e = d;
+        }
+        (a, fa) = (b, fb);
+        b += if d.abs() > tol { d } else { tol.copysign(half) };
+        fb = f(b)?;
+    }
+    Ok(b)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn brent_finds_a_root_to_the_tolerance() {
+        let f = |w: f64| Ok(w.cos() - w);
+        let r = brent(f, 0.0, 1.0, 1.0, 1f64.cos() - 1.0).unwrap();
+        assert!((r - 0.7390851332151607).abs() < 1e-10 * r);
+    }
 }

@@ -1,1 +1,197 @@
-//! placeholder
+//! Steady harmonic response at a fixed spin speed: the non-synchronous transfer function.
+//!
+//! A nonrotating force on the translations `r = x + i y` at frequency `omega > 0` has a
+//! forward and a backward circular part, `f_r(t) = F e^{i omega t} + G e^{-i omega t}` (a force
+//! `cos(omega t)` along the angle `theta` has `F = G = e^{i theta} / 2`). The response of the
+//! rotor spun at `Omega` is `r(t) = a e^{i omega t} + conj(b) e^{-i omega t}`:
+//!
+//! - in the coordinates `r` (isotropic supports) the two parts do not couple: `a` solves
+//!   `D(omega) a = F` and `conj b` solves `D(-omega) conj b = G`;
+//! - in the doubled coordinates `(r, conj r)` one solve at `+omega` gives both, with `F` on the
+//!   `r` rows and `conj G` on the `conj r` rows (the conjugate equation at `+omega`).
+//!
+//! `D(lambda) = -lambda^2 M + i lambda (C_n + C_r) + lambda Omega S G + K - i Omega S C_r`
+//! plus the damping model: the state matrix `A(Omega)` for the linear models
+//! (`(i lambda - A) Z = B f`), and for the hysteretic model `i sgn(lambda) K''_n` and
+//! `i sgn(lambda - Omega) K''_r` on the `r` rows, `i sgn(lambda + Omega) K''_r` on the `conj r`
+//! rows (there the rotor sees `-lambda - Omega`, conjugated). The hysteretic model is the
+//! frequency-domain model, so it is exact here; `sgn 0 = 0` at `lambda = Omega` (see
+//! `unbalance`).
+//!
+//! Then `x(t) = Re(X e^{i omega t})`, `y(t) = Re(Y e^{i omega t})` with `X = a + b`,
+//! `Y = -i (a - b)`.
+
+use crate::analysis::AnalysisError;
+use crate::analysis::control::Control;
+use crate::analysis::unbalance::Orbit;
+use crate::damping::{DampedModel, ModelKind};
+use crate::linalg::{self, CMat, c64};
+use crate::system::{Layout, Realized, RotorSystem};
+use rayon::prelude::*;
+
+/// The force: its forward and backward circular parts on each complex coordinate.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Harmonic {
+    pub forward: Vec<c64>,
+    pub backward: Vec<c64>,
+}
+
+/// How a unit force is applied at a node.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Excitation {
+    /// `cos(omega t)` along the angle from x, rad.
+    Direction(f64),
+    /// `e^{i omega t}` on `r`: unit magnitude, whirling forward.
+    Forward,
+    /// `e^{-i omega t}`.
+    Backward,
+}
+
+impl Excitation {
+    /// The unit force on degree of freedom `dof` of `n`.
+    pub fn at(self, dof: usize, n: usize) -> Harmonic {
+        let zero = c64::new(0.0, 0.0);
+        let mut h = Harmonic {
+            forward: vec![zero; n],
+            backward: vec![zero; n],
+        };
+        match self {
+            Excitation::Direction(t) => {
+                h.forward[dof] = c64::from_polar(0.5, t);
+                h.backward[dof] = c64::from_polar(0.5, t);
+            }
+            Excitation::Forward => h.forward[dof] = c64::new(1.0, 0.0),
+            Excitation::Backward => h.backward[dof] = c64::new(1.0, 0.0),
+        }
+        h
+    }
+}
+
+/// `Z` of `D(lambda) Z = rhs` on the model's coordinates (`rhs` of the model's physical
+/// size: `n`, or `2n` doubled).
+fn solve(
+    r: &Realized,
+    model: &DampedModel,
+    speed: f64,
+    lambda: f64,
+    rhs: &[c64],
+) -> Result<Vec<c64>, AnalysisError> {
+    let big = r.size();
+    let zero = c64::new(0.0, 0.0);
+    let i1 = c64::new(0.0, 1.0);
+    match &model.kind {
+        ModelKind::Linear(state) => {
+            let size = state.size();
+            let a = state.at(speed);
+            let lhs = CMat::from_fn(size, size, |i, j| {
+                let diag = if i == j { i1 * lambda } else { zero };
+                diag - a[(i, j)]
+            });
+            let fm = CMat::from_fn(big, 1, |i, _| rhs[i]);
+            let minv_f = linalg::mass_solve(&r.mass, &fm)?;
+            let b = CMat::from_fn(size, 1, |i, _| if i < big { minv_f[(i, 0)] } else { zero });
+            let z = linalg::solve_complex(&lhs, &b)?;
+            Ok((0..big).map(|i| z[(big + i, 0)]).collect())
+        }
+        ModelKind::Hysteretic(_) => {
+            let sg = r.spun(&r.gyroscopic);
+            let scr = r.spun(&r.damping_rotating);
+            let sgn = |v: f64| {
+                if v > 0.0 {
+                    1.0
+                } else if v < 0.0 {
+                    -1.0
+                } else {
+                    0.0
+                }
+            };
+            let s_n = sgn(lambda);
+            let lhs = CMat::from_fn(big, big, |a, b| {
+                let s_r = if r.spin[a] > 0.0 {
+                    sgn(lambda - speed)
+                } else {
+                    sgn(lambda + speed)
+                };
+                r.mass[(a, b)] * (-lambda * lambda)
+                    + (r.damping_nonrotating[(a, b)] + r.damping_rotating[(a, b)]) * (i1 * lambda)
+                    + sg[(a, b)] * (lambda * speed)
+                    + r.stiffness[(a, b)]
+                    - scr[(a, b)] * (i1 * speed)
+                    + r.loss_nonrotating[(a, b)] * (i1 * s_n)
+                    + r.loss_rotating[(a, b)] * (i1 * s_r)
+            });
+            let b = CMat::from_fn(big, 1, |i, _| rhs[i]);
+            let z = linalg::solve_complex(&lhs, &b)?;
+            Ok((0..big).map(|i| z[(i, 0)]).collect())
+        }
+    }
+}
+
+/// The steady orbit of every degree of freedom in `out` under `force` at `omega` (> 0, or 0
+/// for a static load), the rotor spun at `speed`.
+pub fn harmonic(
+    system: &RotorSystem,
+    model: &DampedModel,
+    speed: f64,
+    omega: f64,
+    force: &Harmonic,
+    out: &[usize],
+) -> Result<Vec<Orbit>, AnalysisError> {
+    let n = system.n();
+    let r = Realized::at(system, speed);
+    let zero = c64::new(0.0, 0.0);
+    let any = |v: &[c64]| v.iter().any(|x| *x != zero);
+    let (a, b): (Vec<c64>, Vec<c64>) = match r.layout {
+        Layout::Doubled => {
+            let rhs: Vec<c64> = force
+                .forward
+                .iter()
+                .copied()
+                .chain(force.backward.iter().map(|g| g.conj()))
+                .collect();
+            let z = solve(&r, model, speed, omega, &rhs)?;
+            (z[..n].to_vec(), z[n..2 * n].to_vec())
+        }
+        Layout::Single => {
+            let a = if any(&force.forward) {
+                solve(&r, model, speed, omega, &force.forward)?
+            } else {
+                vec![zero; n]
+            };
+            let b = if any(&force.backward) {
+                // `conj b` solves the equation at `-omega`.
+                solve(&r, model, speed, -omega, &force.backward)?
+                    .iter()
+                    .map(|c| c.conj())
+                    .collect()
+            } else {
+                vec![zero; n]
+            };
+            (a, b)
+        }
+    };
+    Ok(out.iter().map(|&d| Orbit { a: a[d], b: b[d] }).collect())
+}
+
+/// The orbit at `output` per unit force at `input` at each of `frequencies`.
+pub fn frequency_response(
+    system: &RotorSystem,
+    model: &DampedModel,
+    speed: f64,
+    input: (usize, Excitation),
+    output: usize,
+    frequencies: &[f64],
+    control: &Control,
+) -> Result<Vec<Orbit>, AnalysisError> {
+    let force = input.1.at(input.0, system.n());
+    control.expect(frequencies.len() as u64);
+    frequencies
+        .par_iter()
+        .map(|&w| {
+            control.check()?;
+            let o = harmonic(system, model, speed, w, &force, &[output])?;
+            control.advance(1);
+            Ok(o[0])
+        })
+        .collect()
+}

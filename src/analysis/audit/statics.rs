@@ -1,8 +1,42 @@
 //! Static deflection under gravity, support reactions, shear and bending moment (ROSS's
 //! `run_static`).
+//!
+//! The full beam (no Guyan reduction), gravity `g` along -y. In complex coordinates
+//! `q = x + i y` (rotations `phi_y - i phi_x`) the real symmetric shaft matrices act alike on
+//! the x plane (`Re q`) and the y plane (`Im q`), so the statics is solved in real coordinates
+//! `u = [u_x; u_y]`, each plane with the same `K` (shaft) and `M` (shaft and disks):
+//!
+//! ```text
+//! (K_shaft + K_sup) u = [0; W],    W = -g M e_t
+//! ```
+//!
+//! with `e_t` = 1 on every translation: the consistent load, with its moment terms (as ROSS).
+//! - `Held::Rigid`: pinned supports, the support nodes' translations removed from `u`
+//!   (rotations free); reactions `(K_shaft u - W)` there, shared equally by supports on one
+//!   node. The x plane carries no load: `u_x = 0`.
+//! - `Held::Elastic { speed }`: each support's `K = [[kxx, kxy], [kyx, kyy]]` at `speed` on its
+//!   node's `(x, y)` translations (force on the shaft `-K [x, y]`); reactions `-K [x, y]`.
+//!   Support mass is ignored (static). Without cross-coupling the planes separate.
+//!
+//! A `K` that cannot hold the shaft (one pinned node; supports that leave a rigid motion of
+//! the shaft free) is an error, never a NaN: a rigid motion `R a` (translation and tilt of
+//! either plane) is held iff the 4 x 4 `R^T K_sup R` is regular, which for supports whose
+//! symmetric part is positive semidefinite is exactly `K` regular.
+//!
+//! Stations: shear and moment at both ends of every element, from the equilibrium of the part
+//! left of the section (node forces: reactions and disk weights; each element's own weight
+//! `g rho A l`, uniform, at its centre). ROSS's signs: shear = minus the upward forces to the
+//! left, moment `M(z) = -(sum F_i (z - z_i))`, negative sagging. ROSS's recursion (trapezoid
+//! rule on a shear linear in each element, last element closed by equilibrium) is exact for
+//! uniform elements, so these values are ROSS's up to round-off (tests/audit_ross.rs: 1e-12
+//! relative on its two rotors); the moment at the right end is 0 up to the round-off of the
+//! reactions, where ROSS sets it to 0.
 
 use crate::analysis::AnalysisError;
+use crate::fem::assembly;
+use crate::linalg::{self, LinalgError, RMat};
 use crate::model::rotor::BeamRotor;
+use crate::model::supports::Matrix2;
 
 /// How the shaft is held.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -51,12 +85,266 @@ pub struct StaticResult {
     pub weight: f64,
 }
 
+/// The error for a shaft its supports cannot hold: the solve would be singular.
+const UNHELD: AnalysisError = AnalysisError::Linalg(LinalgError::NonFinite);
+
 /// The rotor under gravity `gravity` along -y.
 pub fn static_deflection(
     rotor: &BeamRotor,
     gravity: f64,
     held: Held,
 ) -> Result<StaticResult, AnalysisError> {
-    let _ = (rotor, gravity, held);
-    todo!()
+    let sys = assembly::beam_shaft(rotor);
+    let (k, m, n) = (&sys.stiffness_rotating, &sys.mass, sys.n());
+    let w: Vec<f64> = (0..n)
+        .map(|i| -gravity * (0..n).step_by(2).map(|j| m[(i, j)]).sum::<f64>())
+        .collect();
+    // Every support with its request index, node and stiffness at the speed asked.
+    let speed = match held {
+        Held::Elastic { speed } => speed,
+        Held::Rigid => 0.0,
+    };
+    let supports: Vec<(usize, usize, Matrix2)> = rotor
+        .supports()
+        .iter()
+        .map(|s| {
+            let k = Matrix2 {
+                xx: s.stiffness,
+                yy: s.stiffness,
+                ..Matrix2::default()
+            };
+            (s.index, s.node, k)
+        })
+        .chain(
+            rotor
+                .general_supports()
+                .iter()
+                .map(|g| (g.index, g.node, g.at(speed).k)),
+        )
+        .collect();
+    let (ux, uy, reactions) = match held {
+        Held::Rigid => rigid(k, &w, &supports)?,
+        Held::Elastic { .. } => elastic(rotor, k, &w, &supports)?,
+    };
+    let mut reactions: Vec<Reaction> = reactions;
+    reactions.sort_by_key(|r| r.support);
+
+    let z = positions(rotor);
+    let nodes = (0..rotor.nodes())
+        .map(|i| Deflection {
+            node: i,
+            position: z[i],
+            y: uy[2 * i],
+            x: ux[2 * i],
+        })
+        .collect();
+    // Upward node forces (reactions, disk weights) and element weights (down).
+    let mut force = vec![0.0; rotor.nodes()];
+    for r in &reactions {
+        force[r.node] += r.y;
+    }
+    for d in rotor.disks() {
+        force[d.node] -= gravity * d.mass;
+    }
+    let element_weight: Vec<f64> = rotor
+        .elements()
+        .iter()
+        .map(|e| {
+            let s = assembly::section(e);
+            gravity * s.density * s.area() * s.length
+        })
+        .collect();
+    let weight = element_weight.iter().sum::<f64>()
+        + gravity * rotor.disks().iter().map(|d| d.mass).sum::<f64>();
+    // Left of a section: the upward resultant `up` and its first moment `up_z` about z = 0,
+    // so that the moment of the left part about the section at z is `up z - up_z`.
+    let (mut up, mut up_z) = (0.0, 0.0);
+    let mut stations = Vec::with_capacity(2 * rotor.elements().len());
+    for (e, &we) in element_weight.iter().enumerate() {
+        up += force[e];
+        up_z += force[e] * z[e];
+        let station = |at: f64, up: f64, up_z: f64| Station {
+            element: e,
+            position: at,
+            shear: -up,
+            bending_moment: -(up * at - up_z),
+        };
+        stations.push(station(z[e], up, up_z));
+        up -= we;
+        up_z -= we * 0.5 * (z[e] + z[e + 1]);
+        stations.push(station(z[e + 1], up, up_z));
+    }
+    Ok(StaticResult {
+        reactions,
+        nodes,
+        stations,
+        weight,
+    })
+}
+
+/// Node positions along the shaft, from 0.
+fn positions(rotor: &BeamRotor) -> Vec<f64> {
+    let mut z = vec![0.0];
+    for e in rotor.elements() {
+        z.push(z.last().unwrap() + e.length);
+    }
+    z
+}
+
+type Solution = (Vec<f64>, Vec<f64>, Vec<Reaction>);
+
+/// Pinned at the support nodes: the y plane without their translations.
+fn rigid(
+    k: &RMat,
+    w: &[f64],
+    supports: &[(usize, usize, Matrix2)],
+) -> Result<Solution, AnalysisError> {
+    let n = w.len();
+    let mut pinned: Vec<usize> = supports.iter().map(|s| 2 * s.1).collect();
+    pinned.sort_unstable();
+    pinned.dedup();
+    // A connected beam pinned at two distinct points has no rigid motion left.
+    if pinned.len() < 2 {
+        return Err(UNHELD);
+    }
+    let free: Vec<usize> = (0..n)
+        .filter(|i| pinned.binary_search(i).is_err())
+        .collect();
+    let kff = RMat::from_fn(free.len(), free.len(), |i, j| k[(free[i], free[j])]);
+    let wf = RMat::from_fn(free.len(), 1, |i, _| w[free[i]]);
+    let uf = linalg::solve_real_matrix(&kff, &wf)?;
+    let mut uy = vec![0.0; n];
+    for (i, &d) in free.iter().enumerate() {
+        uy[d] = uf[(i, 0)];
+    }
+    let reactions = supports
+        .iter()
+        .map(|&(support, node, _)| {
+            let d = 2 * node;
+            let r = (0..n).map(|j| k[(d, j)] * uy[j]).sum::<f64>() - w[d];
+            // Supports on one node are equal penalties in ROSS: they share its reaction.
+            let sharing = supports.iter().filter(|s| s.1 == node).count() as f64;
+            Reaction {
+                support,
+                node,
+                y: r / sharing,
+                x: 0.0,
+            }
+        })
+        .collect();
+    Ok((vec![0.0; n], uy, reactions))
+}
+
+/// Held by the supports' stiffness: both planes, coupled by `kxy`, `kyx`.
+fn elastic(
+    rotor: &BeamRotor,
+    k: &RMat,
+    w: &[f64],
+    supports: &[(usize, usize, Matrix2)],
+) -> Result<Solution, AnalysisError> {
+    if !holds(rotor, supports) {
+        return Err(UNHELD);
+    }
+    let n = w.len();
+    let coupled = supports.iter().any(|s| s.2.xy != 0.0 || s.2.yx != 0.0);
+    let (ux, uy): (Vec<f64>, Vec<f64>) = if coupled {
+        let mut a = RMat::zeros(2 * n, 2 * n);
+        for i in 0..n {
+            for j in 0..n {
+                a[(i, j)] = k[(i, j)];
+                a[(n + i, n + j)] = k[(i, j)];
+            }
+        }
+        for &(_, node, s) in supports {
+            let (x, y) = (2 * node, n + 2 * node);
+            a[(x, x)] += s.xx;
+            a[(x, y)] += s.xy;
+            a[(y, x)] += s.yx;
+            a[(y, y)] += s.yy;
+        }
+        let b = RMat::from_fn(2 * n, 1, |i, _| if i < n { 0.0 } else { w[i - n] });
+        let u = linalg::solve_real_matrix(&a, &b)?;
+        (
+            (0..n).map(|i| u[(i, 0)]).collect(),
+            (0..n).map(|i| u[(n + i, 0)]).collect(),
+        )
+    } else {
+        // The planes separate and the x plane has no load.
+        let mut a = k.clone();
+        for &(_, node, s) in supports {
+            a[(2 * node, 2 * node)] += s.yy;
+        }
+        let b = RMat::from_fn(n, 1, |i, _| w[i]);
+        let u = linalg::solve_real_matrix(&a, &b)?;
+        (vec![0.0; n], (0..n).map(|i| u[(i, 0)]).collect())
+    };
+    let reactions = supports
+        .iter()
+        .map(|&(support, node, s)| {
+            let (x, y) = (ux[2 * node], uy[2 * node]);
+            Reaction {
+                support,
+                node,
+                y: -(s.yx * x + s.yy * y),
+                x: -(s.xx * x + s.xy * y),
+            }
+        })
+        .collect();
+    Ok((ux, uy, reactions))
+}
+
+/// Whether the supports hold every rigid motion of the shaft: `S = R^T K_sup R` regular, with
+/// `R` = translation and tilt `(z - z_mid) / L` of each plane (see the module docs).
+fn holds(rotor: &BeamRotor, supports: &[(usize, usize, Matrix2)]) -> bool {
+    let z = positions(rotor);
+    let length = *z.last().unwrap();
+    let mid = 0.5 * length;
+    let mut s = [[0.0f64; 4]; 4];
+    for &(_, node, k) in supports {
+        let t = (z[node] - mid) / length;
+        // Mode a = (plane, shape): 0, 1 the x plane, 2, 3 the y plane; shapes 1 and t.
+        let shape = [1.0, t, 1.0, t];
+        let plane = |a: usize| a / 2;
+        let kk = [[k.xx, k.xy], [k.yx, k.yy]];
+        for a in 0..4 {
+            for b in 0..4 {
+                s[a][b] += shape[a] * kk[plane(a)][plane(b)] * shape[b];
+            }
+        }
+    }
+    regular(s)
+}
+
+/// Gaussian elimination with full pivoting: every pivot above 1e-12 of the largest entry.
+fn regular(mut s: [[f64; 4]; 4]) -> bool {
+    let scale = s.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+    if !(scale > 0.0 && scale.is_finite()) {
+        return false;
+    }
+    let mut rows: Vec<usize> = (0..4).collect();
+    let mut cols: Vec<usize> = (0..4).collect();
+    for step in 0..4 {
+        let (mut pi, mut pj, mut best) = (step, step, 0.0);
+        for i in step..4 {
+            for j in step..4 {
+                let v = s[rows[i]][cols[j]].abs();
+                if v > best {
+                    (pi, pj, best) = (i, j, v);
+                }
+            }
+        }
+        if best <= 1e-12 * scale {
+            return false;
+        }
+        rows.swap(step, pi);
+        cols.swap(step, pj);
+        let p = s[rows[step]][cols[step]];
+        for i in step + 1..4 {
+            let f = s[rows[i]][cols[step]] / p;
+            for j in step..4 {
+                s[rows[i]][cols[j]] -= f * s[rows[step]][cols[j]];
+            }
+        }
+    }
+    true
 }

@@ -417,6 +417,8 @@ pub struct ReportCheck {
 /// Answer of `POST /v1/report` (as JSON; `Accept: text/html` gives the page).
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
 pub struct ReportResponse {
+    /// The rotor audited, as given.
+    pub rotor: RotorInput,
     pub operating_range: OperatingRange,
     pub critical_speed_map: CriticalSpeedMapResponse,
     pub static_deflection: StaticResponse,

@@ -132,6 +132,10 @@ pub struct UnbalanceResponseRequest {
     /// Nodes to report (default: all nodes with a translation).
     #[serde(default)]
     pub nodes: Option<Vec<i64>>,
+    /// With it, each peak gets its separation margin from this range and the margin API 684
+    /// requires.
+    #[serde(default)]
+    pub operating_range: Option<OperatingRange>,
 }
 
 /// Steady synchronous response of one node: an elliptical orbit (a circle on isotropic
@@ -154,6 +158,10 @@ pub struct NodeUnbalance {
     /// Semi-axes of the orbit, m.
     pub major: Vec<f64>,
     pub minor: Vec<f64>,
+    /// Resonance peaks of `amplitude` (local maxima inside the range, refined between the
+    /// grid's speeds), with their amplification factors.
+    #[serde(default)]
+    pub peaks: Vec<ResponsePeak>,
 }
 
 /// Answer of `POST /v1/unbalance-response`.

@@ -42,6 +42,11 @@ pub enum AnalysisName {
     Damping,
     TimeResponse,
     UnbalanceResponse,
+    CriticalSpeedMap,
+    Static,
+    Level1,
+    FrequencyResponse,
+    Report,
 }
 
 /// Body of `POST /v1/jobs`.

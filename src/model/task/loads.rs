@@ -4,7 +4,7 @@
 use super::*;
 
 /// A node of a rotor with `nodes` nodes, or the error at `at`.
-fn node_index(bad: &mut Invalid, at: String, k: i64, nodes: usize) -> Option<usize> {
+pub(super) fn node_index(bad: &mut Invalid, at: String, k: i64, nodes: usize) -> Option<usize> {
     if k >= 0 && (k as u64) < nodes as u64 {
         Some(k as usize)
     } else {
@@ -17,7 +17,11 @@ fn node_index(bad: &mut Invalid, at: String, k: i64, nodes: usize) -> Option<usi
 }
 
 /// The nodes to report: the requested ones (validated) or all.
-fn report_nodes(bad: &mut Invalid, requested: &Option<Vec<i64>>, nodes: usize) -> Vec<usize> {
+pub(super) fn report_nodes(
+    bad: &mut Invalid,
+    requested: &Option<Vec<i64>>,
+    nodes: usize,
+) -> Vec<usize> {
     match requested {
         None => (0..nodes).collect(),
         Some(list) => {
@@ -185,6 +189,10 @@ impl UnbalanceResponseRequest {
             }
         }
         let out = report_nodes(&mut bad, &self.nodes, nodes);
+        let range = self
+            .operating_range
+            .as_ref()
+            .and_then(|r| super::audit::operating_range(r, "operating_range", &mut bad));
         if !bad.is_empty() {
             return Err(bad);
         }
@@ -206,6 +214,7 @@ impl UnbalanceResponseRequest {
                 speeds,
                 unbalances,
                 nodes: out,
+                range,
             },
             cost,
         }

@@ -4,19 +4,25 @@
 //! task and answers.
 
 use super::api::{
-    AnalysisName, DampingInput, DampingMatricesRequest, MatrixForm, ModalRequest, RotorInput,
-    SweepRequest, TimeResponseRequest, UnbalanceResponseRequest,
+    AnalysisName, CriticalSpeedMapRequest, DampingInput, DampingMatricesRequest,
+    FrequencyResponseRequest, Level1Request, MatrixForm, ModalRequest, ReportRequest, RotorInput,
+    StaticRequest, SweepRequest, TimeResponseRequest, UnbalanceResponseRequest,
 };
 use super::damping::DampingModel;
 use super::error::{Invalid, finite, non_negative, positive};
 use super::limits::{BATCH_PER_THREAD, Cost, Limits, Size};
 use super::loads::{Force, Pwl, SpeedLaw, TimeSpec, Unbalance, sample_count};
+use super::rotor::BeamRotor;
 use super::rotor::Rotor;
 use super::speeds::SpeedGrid;
 use super::supports::held_warning;
+use crate::analysis::audit::frequency::Excitation;
 use crate::damping::nonviscous::BranchSet;
 
+mod audit;
 mod loads;
+
+pub use audit::{ModelPlan, ReportPlan};
 
 /// A validated rotor and damping model.
 #[derive(Debug, Clone)]
@@ -202,7 +208,38 @@ pub enum TaskKind {
         /// `(node, m e, phase)`.
         unbalances: Vec<(usize, f64, f64)>,
         nodes: Vec<usize>,
+        /// Operating range `(min, max)`, rad/s: the peaks' separation margins.
+        range: Option<(f64, f64)>,
     },
+    CriticalMap {
+        rotor: BeamRotor,
+        stiffness: Vec<f64>,
+        modes: usize,
+    },
+    Static {
+        rotor: BeamRotor,
+        gravity: f64,
+        rigid: bool,
+        /// Speed at which tabulated supports are evaluated.
+        speed: f64,
+    },
+    Level1 {
+        model: Model,
+        speed: f64,
+        /// `(node, share of q)`.
+        at: Vec<(usize, f64)>,
+        qs: Vec<f64>,
+        /// API 617's anticipated cross-coupling, N/m.
+        qa: Option<f64>,
+    },
+    Frequency {
+        model: Model,
+        speed: f64,
+        input: (usize, Excitation),
+        output: usize,
+        frequencies: Vec<f64>,
+    },
+    Report(Box<ReportPlan>),
 }
 
 impl Task {
@@ -215,17 +252,27 @@ impl Task {
             TaskKind::Damping { .. } => "damping",
             TaskKind::Time { .. } => "time-response",
             TaskKind::Unbalance { .. } => "unbalance-response",
+            TaskKind::CriticalMap { .. } => "critical-speed-map",
+            TaskKind::Static { .. } => "static",
+            TaskKind::Level1 { .. } => "level1",
+            TaskKind::Frequency { .. } => "frequency-response",
+            TaskKind::Report(_) => "report",
         }
     }
 
-    pub fn model(&self) -> &Model {
+    /// The rotor and damping model analysed (none for the analyses without damping, and for
+    /// the report, which runs several).
+    pub fn model(&self) -> Option<&Model> {
         match &self.kind {
             TaskKind::Modal { model, .. }
             | TaskKind::Campbell { model, .. }
             | TaskKind::Stability { model, .. }
             | TaskKind::Damping { model, .. }
             | TaskKind::Time { model, .. }
-            | TaskKind::Unbalance { model, .. } => model,
+            | TaskKind::Unbalance { model, .. }
+            | TaskKind::Level1 { model, .. }
+            | TaskKind::Frequency { model, .. } => Some(model),
+            TaskKind::CriticalMap { .. } | TaskKind::Static { .. } | TaskKind::Report(_) => None,
         }
     }
 
@@ -238,11 +285,17 @@ impl Task {
             TaskKind::Damping { .. } => "damping",
             TaskKind::Modal { .. } => "rotor",
             TaskKind::Time { .. } if rest > model => "output_interval",
-            TaskKind::Campbell { .. } | TaskKind::Stability { .. } | TaskKind::Unbalance { .. }
+            TaskKind::Campbell { .. }
+            | TaskKind::Stability { .. }
+            | TaskKind::Unbalance { .. }
+            | TaskKind::Report(_)
                 if rest > model =>
             {
                 "speeds"
             }
+            TaskKind::CriticalMap { .. } if rest > model => "stiffness",
+            TaskKind::Level1 { .. } if rest > model => "cross_coupling",
+            TaskKind::Frequency { .. } if rest > model => "frequencies",
             _ => "rotor",
         }
     }
@@ -488,6 +541,11 @@ pub enum JobInput {
     Damping(DampingMatricesRequest),
     Time(TimeResponseRequest),
     Unbalance(UnbalanceResponseRequest),
+    CriticalMap(CriticalSpeedMapRequest),
+    Static(StaticRequest),
+    Level1(Level1Request),
+    Frequency(FrequencyResponseRequest),
+    Report(Box<ReportRequest>),
 }
 
 impl JobInput {
@@ -499,6 +557,11 @@ impl JobInput {
             JobInput::Damping(_) => AnalysisName::Damping,
             JobInput::Time(_) => AnalysisName::TimeResponse,
             JobInput::Unbalance(_) => AnalysisName::UnbalanceResponse,
+            JobInput::CriticalMap(_) => AnalysisName::CriticalSpeedMap,
+            JobInput::Static(_) => AnalysisName::Static,
+            JobInput::Level1(_) => AnalysisName::Level1,
+            JobInput::Frequency(_) => AnalysisName::FrequencyResponse,
+            JobInput::Report(_) => AnalysisName::Report,
         }
     }
 
@@ -510,6 +573,11 @@ impl JobInput {
             JobInput::Damping(r) => r.parse(limits),
             JobInput::Time(r) => r.parse(limits),
             JobInput::Unbalance(r) => r.parse(limits),
+            JobInput::CriticalMap(r) => r.parse(limits),
+            JobInput::Static(r) => r.parse(limits),
+            JobInput::Level1(r) => r.parse(limits),
+            JobInput::Frequency(r) => r.parse(limits),
+            JobInput::Report(r) => r.parse(limits),
         }
     }
 }

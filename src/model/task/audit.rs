@@ -1,0 +1,640 @@
+//! The audit analyses' requests parsed into tasks: critical speed map, static deflection,
+//! Level I, frequency response, and the report that runs them all.
+
+use super::loads::node_index;
+use super::{Model, Task, TaskKind, sweep_cost};
+use crate::analysis::audit::frequency::Excitation;
+use crate::model::api::{
+    CriticalSpeedMapRequest, DampingInput, EquivalentInput, FrequencyResponseRequest,
+    Level1Request, LinearRange, LogRange, NoOptions, NonviscousInput, OperatingRange,
+    ReportRequest, RotorInput, SpeedRange, SpeedsInput, StaticRequest, StaticSupports,
+    SteadyUnbalanceInput, SweepRequest, UnbalanceResponseRequest,
+};
+use crate::model::error::{Invalid, finite, non_negative, positive};
+use crate::model::limits::{Cost, Limits, Size};
+use crate::model::rotor::{BeamRotor, Rotor};
+use serde_json::Value;
+
+/// API 617's `B_c C` (3 x 9.55) with `P` in kW, `N` in rpm, `D_c`, `H_c` in mm: kN/mm.
+const QA_CONSTANT: f64 = 3.0 * 9.55;
+
+/// rad/s to rpm.
+const RPM: f64 = 60.0 / (2.0 * std::f64::consts::PI);
+
+/// The beam rotor of an analysis that replaces or ignores its supports' dynamics.
+fn beam(input: &RotorInput, limits: &Limits, bad: Invalid) -> Result<BeamRotor, Invalid> {
+    let mut bad = bad;
+    match Rotor::parse(input, limits) {
+        Ok(Rotor::Beam(b)) if bad.is_empty() => Ok(b),
+        Ok(Rotor::Beam(_)) => Err(bad),
+        Ok(_) => {
+            bad.push(
+                "rotor.type",
+                "needs a `beam` rotor (a shaft whose supports can be told from it)",
+            );
+            Err(bad)
+        }
+        Err(e) => {
+            bad.extend(e);
+            Err(bad)
+        }
+    }
+}
+
+/// `count` values of a range, `log` spaced or linear; `max` values at most.
+fn grid(
+    at: &str,
+    start: f64,
+    stop: f64,
+    count: i64,
+    log: bool,
+    max: usize,
+    bad: &mut Invalid,
+) -> Option<Vec<f64>> {
+    let a = bad.check(&format!("{at}.start"), finite(start));
+    let b = bad.check(&format!("{at}.stop"), finite(stop));
+    let (a, b) = (a?, b?);
+    let mut ok = true;
+    if log && a <= 0.0 {
+        bad.push(format!("{at}.start"), format!("must be > 0 (got {a})"));
+        ok = false;
+    } else if a < 0.0 {
+        bad.push(format!("{at}.start"), format!("must be >= 0 (got {a})"));
+        ok = false;
+    }
+    if b <= a {
+        bad.push(
+            format!("{at}.stop"),
+            format!("must be > start ({a}) (got {b})"),
+        );
+        ok = false;
+    }
+    if count < 2 || count as u64 > max as u64 {
+        bad.push(
+            format!("{at}.count"),
+            format!("must be 2 to {max} (got {count})"),
+        );
+        ok = false;
+    }
+    if !ok {
+        return None;
+    }
+    let n = count as usize;
+    Some(
+        (0..n)
+            .map(|i| {
+                let t = i as f64 / (n - 1) as f64;
+                if i == n - 1 {
+                    b
+                } else if log {
+                    a * (b / a).powf(t)
+                } else {
+                    a + (b - a) * t
+                }
+            })
+            .collect(),
+    )
+}
+
+/// Cost of `solves` dense symmetric or complex solves of the model's size.
+fn solve_cost(size: Size, solves: usize, values: u64) -> Cost {
+    let s = size.states() as u64;
+    let extra = 3 * 16 * s * s;
+    Cost::new(size, 1, 1, extra, values).with_work(size.eigen_work() * solves as f64)
+}
+
+impl CriticalSpeedMapRequest {
+    pub fn parse(&self, limits: &Limits) -> Result<Task, Invalid> {
+        let mut bad = Invalid::default();
+        let k = &self.stiffness;
+        let stiffness = grid(
+            "stiffness",
+            k.start,
+            k.stop,
+            k.count,
+            true,
+            limits.max_speeds,
+            &mut bad,
+        );
+        let modes = self.modes.unwrap_or(4);
+        if modes < 1 {
+            bad.push("modes", format!("must be >= 1 (got {modes})"));
+        }
+        let rotor = beam(&self.rotor, limits, bad)?;
+        let dofs = 2 * rotor.nodes();
+        if modes as u64 > dofs as u64 {
+            return Err(Invalid::one(
+                "modes",
+                format!("the rotor has {dofs} modes (got {modes})"),
+            ));
+        }
+        let stiffness = stiffness.expect("validated");
+        let size = Size {
+            assembled: dofs,
+            dofs,
+            internal: 0,
+            problems: 1,
+            points: 1,
+        };
+        let count = stiffness.len();
+        let values = (count * (modes as usize + 1)) as u64 + 64;
+        Ok(Task {
+            warnings: vec![],
+            kind: TaskKind::CriticalMap {
+                rotor,
+                stiffness,
+                modes: modes as usize,
+            },
+            cost: solve_cost(size, count + 16 * modes as usize, values),
+        })
+    }
+}
+
+impl StaticRequest {
+    pub fn parse(&self, limits: &Limits) -> Result<Task, Invalid> {
+        let mut bad = Invalid::default();
+        let g = bad.check("gravity", positive(self.gravity.unwrap_or(9.8065)));
+        let speed = bad.check("speed", non_negative(self.speed.unwrap_or(0.0)));
+        let rotor = beam(&self.rotor, limits, bad)?;
+        let supports = self.supports.unwrap_or_default();
+        if rotor.supports().len() + rotor.general_supports().len() == 0 {
+            return Err(Invalid::one("rotor.supports", "the shaft needs supports"));
+        }
+        let dofs = 2 * rotor.nodes();
+        let size = Size {
+            assembled: dofs,
+            dofs: 2 * dofs,
+            internal: 0,
+            problems: 1,
+            points: 1,
+        };
+        let values = 6 * rotor.nodes() as u64 + 64;
+        Ok(Task {
+            warnings: vec![],
+            kind: TaskKind::Static {
+                rotor,
+                gravity: g.expect("validated"),
+                rigid: supports == StaticSupports::Rigid,
+                speed: speed.expect("validated"),
+            },
+            cost: solve_cost(size, 1, values),
+        })
+    }
+}
+
+/// The nodes and shares of the Level I cross-coupling, and API 617's q_A (N/m) from the
+/// machine data.
+fn placing(
+    r: &Level1Request,
+    nodes: usize,
+    speed: Option<f64>,
+    bad: &mut Invalid,
+) -> (Vec<(usize, f64)>, Option<f64>) {
+    if let Some(m) = &r.machine {
+        if m.stages.is_empty() {
+            bad.push("machine.stages", "needs at least one stage");
+        }
+        let mut out = vec![];
+        for (i, s) in m.stages.iter().enumerate() {
+            let at = format!("machine.stages[{i}]");
+            let n = node_index(bad, format!("{at}.node"), s.node, nodes);
+            let p = bad.check(&format!("{at}.power"), positive(s.power));
+            let d = bad.check(&format!("{at}.diameter"), positive(s.diameter));
+            let h = bad.check(&format!("{at}.width"), positive(s.width));
+            let rho = bad.check(
+                &format!("{at}.density_ratio"),
+                positive(s.density_ratio.unwrap_or(1.0)),
+            );
+            if let (Some(n), Some(p), Some(d), Some(h), Some(rho), Some(w)) =
+                (n, p, d, h, rho, speed)
+            {
+                if w <= 0.0 {
+                    bad.push("speed", "q_A needs a speed > 0");
+                    continue;
+                }
+                // kN/mm to N/m: 1e6.
+                let qa = QA_CONSTANT * (p / 1e3) / ((d * 1e3) * (h * 1e3) * (w * RPM)) * rho * 1e6;
+                out.push((n, qa));
+            }
+        }
+        let total: f64 = out.iter().map(|s| s.1).sum();
+        if total > 0.0 {
+            let shares = out.iter().map(|&(n, q)| (n, q / total)).collect();
+            return (shares, Some(total));
+        }
+        return (vec![], None);
+    }
+    let list: Vec<(String, i64)> = match (&r.node, &r.nodes) {
+        (Some(n), None) => vec![("node".into(), *n)],
+        (None, Some(list)) if !list.is_empty() => list
+            .iter()
+            .enumerate()
+            .map(|(i, &n)| (format!("nodes[{i}]"), n))
+            .collect(),
+        (None, Some(_)) => {
+            bad.push("nodes", "needs at least one node");
+            vec![]
+        }
+        (Some(_), Some(_)) => {
+            bad.push("node", "give `node` or `nodes`, not both");
+            vec![]
+        }
+        (None, None) => {
+            bad.push("node", "needs `node` or `nodes` (or `machine`)");
+            vec![]
+        }
+    };
+    let picked: Vec<usize> = list
+        .into_iter()
+        .filter_map(|(at, n)| node_index(bad, at, n, nodes))
+        .collect();
+    let w = 1.0 / picked.len().max(1) as f64;
+    (picked.into_iter().map(|n| (n, w)).collect(), None)
+}
+
+impl Level1Request {
+    pub fn parse(&self, limits: &Limits) -> Result<Task, Invalid> {
+        let mut bad = Invalid::default();
+        let speed = bad.check("speed", non_negative(self.speed));
+        let c = &self.cross_coupling;
+        let qs = grid(
+            "cross_coupling",
+            c.start,
+            c.stop,
+            c.count,
+            false,
+            limits.max_speeds,
+            &mut bad,
+        );
+        let model = Model::parse(&self.rotor, &self.damping, limits, bad)?;
+        let mut bad = Invalid::default();
+        let (at, qa) = placing(self, model.rotor.node_count(), speed, &mut bad);
+        if !bad.is_empty() {
+            return Err(bad);
+        }
+        let qs = qs.expect("validated");
+        let speed = speed.expect("validated");
+        let mut size = model.size();
+        // The skew supports are isotropic: the coordinates stay as they are.
+        size.points = size.points.max(1);
+        let solves = qs.len() + 60;
+        let values = 3 * qs.len() as u64 + 32;
+        Ok(Task {
+            warnings: model.warnings(speed, speed),
+            kind: TaskKind::Level1 {
+                model,
+                speed,
+                at,
+                qs,
+                qa,
+            },
+            cost: sweep_cost(size, 1, limits, false, values)
+                .with_work(size.eigen_work() * solves as f64),
+        })
+    }
+}
+
+/// The excitation of a frequency response.
+fn excitation(v: &Option<Value>, bad: &mut Invalid) -> Option<Excitation> {
+    match v {
+        None => Some(Excitation::Direction(0.0)),
+        Some(Value::Number(n)) => match n.as_f64() {
+            Some(t) if t.is_finite() => Some(Excitation::Direction(t)),
+            _ => {
+                bad.push("input.direction", "must be a finite angle in rad");
+                None
+            }
+        },
+        Some(Value::String(s)) if s == "forward" => Some(Excitation::Forward),
+        Some(Value::String(s)) if s == "backward" => Some(Excitation::Backward),
+        Some(other) => {
+            bad.push(
+                "input.direction",
+                format!("must be an angle in rad, \"forward\" or \"backward\" (got {other})"),
+            );
+            None
+        }
+    }
+}
+
+impl FrequencyResponseRequest {
+    pub fn parse(&self, limits: &Limits) -> Result<Task, Invalid> {
+        let mut bad = Invalid::default();
+        let speed = bad.check("speed", non_negative(self.speed));
+        let exc = excitation(&self.input.direction, &mut bad);
+        // One frequency is a valid question here (a sweep needs two speeds).
+        let freqs = match &self.frequencies {
+            SpeedsInput::List(l) if l.len() == 1 => {
+                bad.check("frequencies[0]", positive(l[0])).map(|w| vec![w])
+            }
+            input => match crate::model::speeds::SpeedGrid::parse(input, limits.max_speeds) {
+                Ok(g) => Some(g.as_slice().to_vec()),
+                Err(mut e) => {
+                    // The grid's messages name `speeds`: this field is `frequencies`.
+                    e.prefix_paths(|p| p.replacen("speeds", "frequencies", 1));
+                    bad.extend(e);
+                    None
+                }
+            },
+        };
+        if let Some(g) = &freqs
+            && g[0] <= 0.0
+        {
+            bad.push(
+                "frequencies",
+                "must be > 0 (the response to a static load is /v1/static)",
+            );
+        }
+        let model = Model::parse(&self.rotor, &self.damping, limits, bad)?;
+        let mut bad = Invalid::default();
+        let nodes = model.rotor.node_count();
+        let input = node_index(&mut bad, "input.node".into(), self.input.node, nodes);
+        let output = node_index(&mut bad, "output.node".into(), self.output.node, nodes);
+        if !bad.is_empty() {
+            return Err(bad);
+        }
+        let frequencies = freqs.expect("validated");
+        let size = model.size();
+        let count = frequencies.len() as u64;
+        let s = size.states() as u64;
+        let threads = limits.threads.max(1) as u64;
+        let extra = threads * 3 * 16 * s * s + count * 64;
+        let work = count as f64 * (s * s * s) as f64 * 3.0;
+        let speed = speed.expect("validated");
+        Task {
+            warnings: model.warnings(speed, speed),
+            kind: TaskKind::Frequency {
+                model,
+                speed,
+                input: (input.expect("validated"), exc.expect("validated")),
+                output: output.expect("validated"),
+                frequencies,
+            },
+            cost: Cost::new(size, 0, 0, extra, count * 10 + 16).with_work(work),
+        }
+        .bounded(limits, "frequencies")
+    }
+}
+
+/// Validates an operating range.
+pub(super) fn operating_range(
+    r: &OperatingRange,
+    at: &str,
+    bad: &mut Invalid,
+) -> Option<(f64, f64)> {
+    let lo = bad.check(&format!("{at}.min"), positive(r.min));
+    let hi = bad.check(&format!("{at}.max"), positive(r.max));
+    match (lo, hi) {
+        (Some(lo), Some(hi)) if hi >= lo => Some((lo, hi)),
+        (Some(lo), Some(hi)) => {
+            bad.push(
+                format!("{at}.max"),
+                format!("must be >= min ({lo}) (got {hi})"),
+            );
+            None
+        }
+        _ => None,
+    }
+}
+
+/// The tasks a report runs.
+#[derive(Debug, Clone)]
+pub struct ReportPlan {
+    /// The rotor as given (the report shows it).
+    pub rotor: RotorInput,
+    pub range: (f64, f64),
+    pub map: Task,
+    pub statics: Task,
+    /// Under the request's damping model.
+    pub campbell: Task,
+    pub unbalance: Task,
+    pub unbalances: Vec<SteadyUnbalanceInput>,
+    /// Per compared model: its name, Campbell, Level I and unbalance tasks.
+    pub models: Vec<ModelPlan>,
+}
+
+impl ReportPlan {
+    /// Every task, in the order the report runs them.
+    pub fn tasks(&self) -> Vec<&Task> {
+        let mut all = vec![&self.map, &self.statics, &self.campbell, &self.unbalance];
+        for m in &self.models {
+            all.extend([&m.campbell, &m.level1, &m.unbalance]);
+        }
+        all
+    }
+
+    /// The tasks that run (a model's parts equal to the report's are not run twice).
+    fn run_tasks(&self) -> Vec<&Task> {
+        let mut all = vec![&self.map, &self.statics, &self.campbell, &self.unbalance];
+        for m in &self.models {
+            if m.primary {
+                all.push(&m.level1);
+            } else {
+                all.extend([&m.campbell, &m.level1, &m.unbalance]);
+            }
+        }
+        all
+    }
+}
+
+#[derive(Debug, Clone)]
+pub struct ModelPlan {
+    pub name: &'static str,
+    /// The request's own model: its Campbell and unbalance are the report's (run once).
+    pub primary: bool,
+    pub campbell: Task,
+    pub level1: Task,
+    pub unbalance: Task,
+}
+
+impl ReportRequest {
+    /// The models compared: the request's, or H, E, NVD (with the request's options where it
+    /// is one of them) and viscous.
+    fn models(&self) -> Vec<DampingInput> {
+        if let Some(m) = &self.models {
+            return m.clone();
+        }
+        let nv = match &self.damping {
+            DampingInput::Nonviscous(n) => n.clone(),
+            _ => NonviscousInput::default(),
+        };
+        let eq = match &self.damping {
+            DampingInput::Equivalent(e) => e.clone(),
+            _ => EquivalentInput::default(),
+        };
+        vec![
+            DampingInput::Hysteretic(NoOptions {}),
+            DampingInput::Equivalent(eq),
+            DampingInput::Nonviscous(nv),
+            DampingInput::Viscous(NoOptions {}),
+        ]
+    }
+
+    pub fn parse(&self, limits: &Limits) -> Result<Task, Invalid> {
+        let mut bad = Invalid::default();
+        let range = operating_range(&self.operating_range, "operating_range", &mut bad);
+        let rotor = beam(&self.rotor, limits, bad)?;
+        let (lo, hi) = range.expect("validated");
+        let speeds = self
+            .speeds
+            .clone()
+            .unwrap_or(SpeedsInput::Range(SpeedRange {
+                start: 0.0,
+                stop: 1.25 * hi,
+                count: 121,
+            }));
+        // API 684's unbalance: 6350 W / N g mm at the heaviest disk (or mid-shaft).
+        let unbalances = self.unbalances.clone().unwrap_or_else(|| {
+            let node = rotor
+                .disks()
+                .iter()
+                .max_by(|a, b| a.mass.total_cmp(&b.mass))
+                .map_or(rotor.nodes() / 2, |d| d.node);
+            let w_kg = rotor_mass(&rotor);
+            let u = 6350.0 * w_kg / (hi * RPM) * 1e-6;
+            vec![SteadyUnbalanceInput {
+                node: node as i64,
+                amount: u,
+                phase: 0.0,
+            }]
+        });
+        let nodes = self.nodes.clone().unwrap_or_else(|| {
+            let mut n: Vec<i64> = unbalances.iter().map(|u| u.node).collect();
+            n.extend(rotor.supports().iter().map(|s| s.node as i64));
+            n.extend(rotor.general_supports().iter().map(|s| s.node as i64));
+            n.sort_unstable();
+            n.dedup();
+            n
+        });
+        let cc_nodes = self
+            .cross_coupling_nodes
+            .clone()
+            .unwrap_or_else(|| vec![unbalances.first().map_or(0, |u| u.node)]);
+        let cross_coupling = self.cross_coupling.clone().unwrap_or(LinearRange {
+            start: 0.0,
+            stop: 2e7,
+            count: 21,
+        });
+        let max_frequency = self.max_frequency.or(Some(1.5 * 1.25 * hi));
+        let map = CriticalSpeedMapRequest {
+            rotor: self.rotor.clone(),
+            stiffness: self.stiffness.clone().unwrap_or(LogRange {
+                start: 1e5,
+                stop: 1e10,
+                count: 31,
+            }),
+            modes: Some(4),
+        }
+        .parse(limits)?;
+        let statics = StaticRequest {
+            rotor: self.rotor.clone(),
+            gravity: None,
+            supports: Some(StaticSupports::Elastic),
+            speed: Some(hi),
+        }
+        .parse(limits)?;
+        let campbell_for = |damping: &DampingInput| {
+            SweepRequest {
+                rotor: self.rotor.clone(),
+                damping: damping.clone(),
+                speeds: speeds.clone(),
+                max_frequency,
+                modal_reduction: None,
+            }
+            .parse_campbell(limits)
+        };
+        let unbalance_for = |damping: &DampingInput| {
+            UnbalanceResponseRequest {
+                rotor: self.rotor.clone(),
+                damping: damping.clone(),
+                speeds: speeds.clone(),
+                unbalances: unbalances.clone(),
+                nodes: Some(nodes.clone()),
+                operating_range: Some(self.operating_range),
+            }
+            .parse(limits)
+        };
+        let campbell = campbell_for(&self.damping)?;
+        let unbalance = unbalance_for(&self.damping)?;
+        let mut models = vec![];
+        for (i, d) in self.models().iter().enumerate() {
+            let level1 = Level1Request {
+                rotor: self.rotor.clone(),
+                damping: d.clone(),
+                speed: hi,
+                node: None,
+                nodes: if self.machine.is_some() {
+                    None
+                } else {
+                    Some(cc_nodes.clone())
+                },
+                cross_coupling: cross_coupling.clone(),
+                machine: self.machine.clone(),
+            }
+            .parse(limits)
+            .map_err(|mut e| {
+                e.prefix_paths(|p| match p.strip_prefix("damping") {
+                    Some(rest) => format!("models[{i}]{rest}"),
+                    None => p.to_string(),
+                });
+                e
+            })?;
+            let name = level1.model().map_or("", |m| m.damping.name());
+            let same = serde_json::to_value(d).ok() == serde_json::to_value(&self.damping).ok();
+            models.push(ModelPlan {
+                name,
+                primary: same,
+                campbell: campbell_for(d)?,
+                unbalance: unbalance_for(d)?,
+                level1,
+            });
+        }
+        let plan = ReportPlan {
+            rotor: self.rotor.clone(),
+            range: (lo, hi),
+            map,
+            statics,
+            campbell,
+            unbalance,
+            unbalances,
+            models,
+        };
+        let cost = combined(&plan.run_tasks());
+        Task {
+            warnings: plan.campbell.warnings.clone(),
+            kind: TaskKind::Report(Box::new(plan)),
+            cost,
+        }
+        .bounded(limits, "speeds")
+    }
+}
+
+/// Mass of shaft and disks, kg.
+fn rotor_mass(rotor: &BeamRotor) -> f64 {
+    let shaft: f64 = rotor
+        .elements()
+        .iter()
+        .map(|e| {
+            e.density
+                * e.length
+                * std::f64::consts::FRAC_PI_4
+                * (e.outer_diameter.powi(2) - e.inner_diameter.powi(2))
+        })
+        .sum();
+    shaft + rotor.disks().iter().map(|d| d.mass).sum::<f64>()
+}
+
+/// Tasks run one after the other: the largest heap, the sum of the work and the answers.
+fn combined(tasks: &[&Task]) -> Cost {
+    let mut c = tasks[0].cost;
+    for t in &tasks[1..] {
+        if t.cost.peak_bytes > c.peak_bytes {
+            c.size = t.cost.size;
+            c.peak_bytes = t.cost.peak_bytes;
+        }
+        c.response_bytes += t.cost.response_bytes;
+        c.work += t.cost.work;
+    }
+    c.peak_bytes += c.response_bytes;
+    c
+}

@@ -1,0 +1,360 @@
+//! Schematic of a beam rotor: shaft segments to scale in length (diameters exaggerated), node
+//! numbers, disks as taller blocks, supports as springs on triangles under their nodes.
+
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, VPos};
+
+use super::{Area, Err, FRAME, INK, Labels, NOTE, PALETTE, text, text_box};
+use crate::model::api::{BeamInput, Coefficient, RotorInput, SupportInput};
+
+const W: i32 = 960;
+const H: i32 = 350;
+const LEFT: i32 = 60;
+const RIGHT: i32 = 60;
+/// Centre line, node-number row, scale bar.
+const AXIS: i32 = 165;
+const NODES_Y: i32 = 48;
+const SCALE_Y: i32 = 312;
+/// Tallest shaft and tallest disk, px.
+const SHAFT_PX: f64 = 56.0;
+const DISK_PX: f64 = 150.0;
+const GREY: RGBColor = RGBColor(110, 110, 110);
+const STEEL: RGBColor = RGBColor(178, 190, 204);
+const STEEL_EDGE: RGBColor = RGBColor(90, 100, 115);
+
+/// Axial positions of the nodes, m (each segment split into its equal elements).
+pub(crate) fn node_positions(b: &BeamInput) -> Vec<f64> {
+    let mut at = vec![0.0];
+    let mut x = 0.0;
+    for s in &b.shaft {
+        let n = s.elements.unwrap_or(1).max(1);
+        for k in 1..=n {
+            at.push(x + s.length * k as f64 / n as f64);
+        }
+        x += s.length;
+    }
+    at
+}
+
+fn coefficient(c: &Option<Coefficient>) -> Option<String> {
+    match c.as_ref()? {
+        Coefficient::Number(v) if v.is_finite() => Some(format!("{v:.3e}")),
+        Coefficient::Number(_) => None,
+        Coefficient::Table(t) => {
+            let (lo, hi) = super::range(t.iter().copied(), 0.0);
+            Some(format!("{lo:.2e}..{hi:.2e} (Ω)"))
+        }
+    }
+}
+
+/// `k = ... N/m` of a support (its `kxx`/`kyy` when general).
+pub(crate) fn support_stiffness(s: &SupportInput) -> String {
+    if let Some(k) = s.stiffness.filter(|k| k.is_finite()) {
+        return format!("k {k:.3e} N/m");
+    }
+    let kxx = coefficient(&s.kxx);
+    let kyy = coefficient(&s.kyy);
+    match (kxx, kyy) {
+        (Some(a), Some(b)) if a != b => format!("kxx {a}, kyy {b} N/m"),
+        (Some(a), _) => format!("k {a} N/m"),
+        (None, Some(b)) => format!("kyy {b} N/m"),
+        (None, None) => "k 0".into(),
+    }
+}
+
+/// Diameter and thickness of a solid disk of mass `m` with these inertias, m (none unknown).
+fn disk_size(m: f64, ip: f64, id: f64) -> (Option<f64>, Option<f64>) {
+    if !(m > 0.0 && ip > 0.0 && ip.is_finite()) {
+        return (None, None);
+    }
+    let r2 = 2.0 * ip / m;
+    let h2 = 12.0 * id / m - 3.0 * r2;
+    (
+        Some(2.0 * r2.sqrt()),
+        (h2 > 0.0 && h2.is_finite()).then(|| h2.sqrt()),
+    )
+}
+
+/// A sketch of the rotor; non-beam rotors get a short note instead.
+pub fn rotor_sketch(rotor: &RotorInput) -> Result<String, Err> {
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (W as u32, H as u32)).into_drawing_area();
+        root.fill(&WHITE)?;
+        match rotor {
+            RotorInput::Beam(b) if !b.shaft.is_empty() => beam(&root, b)?,
+            _ => {
+                let s = "Rotor sketch: drawn for beam rotors only";
+                text(
+                    &root,
+                    s,
+                    (W / 2, H / 2),
+                    20,
+                    INK,
+                    (HPos::Center, VPos::Center),
+                )?;
+            }
+        }
+        root.present()?;
+    }
+    Ok(svg)
+}
+
+fn beam(root: &Area<'_>, b: &BeamInput) -> Result<(), Err> {
+    let nodes = node_positions(b);
+    let length: f64 = b.shaft.iter().map(|s| s.length).sum();
+    let length = if length.is_finite() && length > 0.0 {
+        length
+    } else {
+        1.0
+    };
+    let px_m = f64::from(W - LEFT - RIGHT) / length;
+    let px = |x: f64| LEFT + (x * px_m).round() as i32;
+    let d_max = b
+        .shaft
+        .iter()
+        .map(|s| s.outer_diameter)
+        .filter(|d| d.is_finite())
+        .fold(0.0, f64::max);
+    let d_px = if d_max > 0.0 {
+        (SHAFT_PX / d_max).min(px_m * 6.0)
+    } else {
+        1.0
+    };
+    let exaggeration = d_px / px_m;
+    let title = format!("Rotor model: {length:.3} m long, diameters drawn ×{exaggeration:.1}");
+    text(
+        root,
+        &title,
+        (W / 2, 14),
+        22,
+        INK,
+        (HPos::Center, VPos::Top),
+    )?;
+    let mut labels = Labels::new([0, 30, W, H]);
+
+    // Shaft segments, bores lighter.
+    let mut x = 0.0;
+    let mut half_at = vec![0; nodes.len()];
+    let mut node = 0;
+    for s in &b.shaft {
+        let h = ((s.outer_diameter * d_px / 2.0).round() as i32).max(2);
+        let (a, e) = (px(x), px(x + s.length));
+        root.draw(&Rectangle::new(
+            [(a, AXIS - h), (e, AXIS + h)],
+            STEEL.filled(),
+        ))?;
+        root.draw(&Rectangle::new(
+            [(a, AXIS - h), (e, AXIS + h)],
+            STEEL_EDGE.stroke_width(1),
+        ))?;
+        labels.block([a, AXIS - h, e, AXIS + h]);
+        if s.inner_diameter > 0.0 && s.inner_diameter < s.outer_diameter {
+            let hi = ((s.inner_diameter * d_px / 2.0).round() as i32).max(1);
+            root.draw(&Rectangle::new(
+                [(a + 1, AXIS - hi), (e - 1, AXIS + hi)],
+                WHITE.mix(0.7).filled(),
+            ))?;
+        }
+        let n = s.elements.unwrap_or(1).max(1) as usize;
+        for k in node..=(node + n).min(nodes.len() - 1) {
+            half_at[k] = half_at[k].max(h);
+        }
+        node += n;
+        x += s.length;
+    }
+    let centre = vec![(px(0.0) - 14, AXIS), (px(length) + 14, AXIS)];
+    root.draw(&PathElement::new(
+        centre,
+        STEEL_EDGE.mix(0.6).stroke_width(1),
+    ))?;
+    // Element boundaries and node numbers (thinned when crowded; disk and support nodes kept).
+    let special = |n: usize| {
+        b.disks.iter().any(|d| d.node as usize == n)
+            || b.supports.iter().any(|s| s.node as usize == n)
+    };
+    let step = {
+        let gap = f64::from(W - LEFT - RIGHT) / nodes.len().max(1) as f64;
+        (22.0 / gap).ceil().max(1.0) as usize
+    };
+    let mut last = i32::MIN / 2;
+    for (n, &xn) in nodes.iter().enumerate() {
+        let p = px(xn);
+        if nodes.len() <= 400 {
+            let h = half_at[n];
+            root.draw(&PathElement::new(
+                vec![(p, AXIS - h), (p, AXIS + h)],
+                STEEL_EDGE.mix(0.5),
+            ))?;
+        }
+        let end = n + 1 == nodes.len();
+        if (n % step == 0 || special(n) || end) && p - last >= 18 {
+            text(
+                root,
+                &n.to_string(),
+                (p, NODES_Y),
+                NOTE,
+                INK,
+                (HPos::Center, VPos::Top),
+            )?;
+            root.draw(&PathElement::new(
+                vec![(p, NODES_Y + 18), (p, NODES_Y + 26)],
+                INK.mix(0.5),
+            ))?;
+            last = p;
+        }
+    }
+    let (nw, nh) = text_box("node", NOTE);
+    text(
+        root,
+        "node",
+        (LEFT - 8 - nw, NODES_Y),
+        NOTE,
+        GREY,
+        (HPos::Left, VPos::Top),
+    )?;
+    labels.block([0, NODES_Y, W, NODES_Y + nh + 10]);
+
+    // Disks: diameter from the polar inertia (solid disk), joint scale, taller than the shaft.
+    let sizes: Vec<_> = b
+        .disks
+        .iter()
+        .map(|d| disk_size(d.mass, d.polar_inertia, d.transverse_inertia))
+        .collect();
+    let dd_max = sizes.iter().filter_map(|s| s.0).fold(0.0, f64::max);
+    let dd_px = if dd_max > 0.0 {
+        d_px.min(DISK_PX / dd_max)
+    } else {
+        d_px
+    };
+    for (d, (dia, thick)) in b.disks.iter().zip(&sizes) {
+        let Some(&xn) = nodes.get(d.node.max(0) as usize) else {
+            continue;
+        };
+        let shaft = half_at[d.node as usize];
+        let h = dia
+            .map_or(shaft * 3, |v| (v * dd_px / 2.0).round() as i32)
+            .max(shaft * 3 / 2 + 4);
+        let w = thick.map_or(14, |t| (t * px_m).round() as i32).clamp(8, 40);
+        let p = px(xn);
+        let r = [(p - w / 2, AXIS - h), (p + w / 2, AXIS + h)];
+        root.draw(&Rectangle::new(r, PALETTE[0].mix(0.75).filled()))?;
+        root.draw(&Rectangle::new(r, PALETTE[0].stroke_width(1)))?;
+        labels.block([p - w / 2, AXIS - h, p + w / 2, AXIS + h]);
+        let s = format!("{:.1} kg", d.mass);
+        let (tw, th) = text_box(&s, NOTE);
+        let spot = (p - tw / 2, AXIS + h + 4);
+        labels.block([spot.0, spot.1, spot.0 + tw, spot.1 + th]);
+        text(root, &s, spot, NOTE, PALETTE[0], (HPos::Left, VPos::Top))?;
+    }
+
+    // Supports: a triangle under the shaft, a spring, the ground.
+    let mut stacked = vec![0; nodes.len()];
+    for s in &b.supports {
+        let Some(&xn) = nodes.get(s.node.max(0) as usize) else {
+            continue;
+        };
+        let n = s.node as usize;
+        // Several supports at one node stand side by side, centred on it.
+        let here = b.supports.iter().filter(|o| o.node == s.node).count() as i32;
+        let p = px(xn) + 26 * stacked[n] - 13 * (here - 1);
+        stacked[n] += 1;
+        let top = AXIS + half_at[n];
+        let c = PALETTE[1];
+        root.draw(&Polygon::new(
+            vec![(p, top), (p - 9, top + 14), (p + 9, top + 14)],
+            c.filled(),
+        ))?;
+        let mut zig = vec![(p, top + 14), (p, top + 18)];
+        for k in 0..6 {
+            zig.push((p + if k % 2 == 0 { 7 } else { -7 }, top + 21 + 4 * k));
+        }
+        zig.extend([(p, top + 42), (p, top + 46)]);
+        root.draw(&PathElement::new(zig, c.stroke_width(2)))?;
+        root.draw(&PathElement::new(
+            vec![(p - 14, top + 46), (p + 14, top + 46)],
+            INK.stroke_width(2),
+        ))?;
+        for k in 0..4 {
+            let gx = p - 12 + 8 * k;
+            root.draw(&PathElement::new(
+                vec![(gx, top + 46), (gx - 5, top + 52)],
+                INK.mix(0.6),
+            ))?;
+        }
+        labels.block([p - 14, top, p + 14, top + 52]);
+    }
+    // Their stiffness under them, one line per support, centred when there is room.
+    let mut below = vec![0; nodes.len()];
+    for s in &b.supports {
+        let Some(&xn) = nodes.get(s.node.max(0) as usize) else {
+            continue;
+        };
+        let n = s.node as usize;
+        let (p, top) = (px(xn), AXIS + half_at[n] + 54);
+        let line = support_stiffness(s);
+        let (w, h) = text_box(&line, NOTE);
+        let y = top + h * below[n];
+        below[n] += 1;
+        let centred = [(p - w / 2).clamp(2, W - 2 - w), y, 0, y + h];
+        let (x, y) = if labels.take([centred[0], y, centred[0] + w, y + h]) {
+            (centred[0], y)
+        } else {
+            labels.place((p, y), &line, NOTE, p > W / 2)
+        };
+        text(
+            root,
+            &line,
+            (x, y),
+            NOTE,
+            PALETTE[1],
+            (HPos::Left, VPos::Top),
+        )?;
+    }
+
+    // Scale bar along the axis.
+    root.draw(&PathElement::new(
+        vec![(px(0.0), SCALE_Y), (px(length), SCALE_Y)],
+        FRAME.stroke_width(1),
+    ))?;
+    let tick = nice_step(length / 6.0);
+    let mut t = 0.0;
+    while t <= length * (1.0 + 1e-9) {
+        let p = px(t);
+        root.draw(&PathElement::new(
+            vec![(p, SCALE_Y - 4), (p, SCALE_Y + 4)],
+            FRAME.stroke_width(1),
+        ))?;
+        text(
+            root,
+            &format!("{t:.2}"),
+            (p, SCALE_Y + 7),
+            NOTE,
+            INK,
+            (HPos::Center, VPos::Top),
+        )?;
+        t += tick;
+    }
+    text(
+        root,
+        "m",
+        (px(length) + 10, SCALE_Y),
+        NOTE,
+        INK,
+        (HPos::Left, VPos::Center),
+    )?;
+    Ok(())
+}
+
+/// 1, 2 or 5 times a power of ten, at least `x`.
+fn nice_step(x: f64) -> f64 {
+    if !(x.is_finite() && x > 0.0) {
+        return 1.0;
+    }
+    let p = 10f64.powf(x.log10().floor());
+    [1.0, 2.0, 5.0, 10.0]
+        .into_iter()
+        .map(|m| m * p)
+        .find(|s| *s >= x)
+        .unwrap_or(10.0 * p)
+}

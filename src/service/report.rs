@@ -1,0 +1,608 @@
+//! The audit report as one self-contained HTML5 page: inline CSS, inline SVG plots, no scripts
+//! and no external resources. It gathers the verdict of the API 684 / API 617 checks, the
+//! model, the critical speed map, static loads, Campbell diagram, unbalance peaks, the Level I
+//! screen, and the margins under each damping model side by side.
+
+use std::fmt::Write;
+
+use super::plot::{RPM, campbell_with};
+use super::plot_audit::{
+    critical_speed_map_with, level1, rotor_sketch, stiffness_unit, unbalance_with,
+};
+use crate::model::api::{ReportResponse, ResponsePeak, RotorInput};
+
+type Err = Box<dyn std::error::Error>;
+
+const STYLE: &str = "
+body { font-family: 'DejaVu Sans', 'Helvetica Neue', Arial, sans-serif; color: #1e1e1e;
+  margin: 0; background: #f4f5f7; line-height: 1.4; }
+main { max-width: 1000px; margin: 0 auto; padding: 24px 28px 48px; background: #fff; }
+h1 { font-size: 26px; margin: 0 0 4px; }
+h2 { font-size: 20px; margin: 32px 0 10px; padding-bottom: 4px; border-bottom: 2px solid #d0d4da; }
+p.lead { color: #555; margin: 0 0 16px; }
+table { border-collapse: collapse; margin: 8px 0 14px; font-size: 14px; }
+th, td { border: 1px solid #cfd3d8; padding: 4px 9px; text-align: left; vertical-align: top; }
+th { background: #eef0f3; font-weight: 600; }
+td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
+tr.pass td.verdict, td.pass { background: #dff3e0; color: #155b1b; font-weight: 600; }
+tr.fail td.verdict, td.fail { background: #fbe0e0; color: #9b1111; font-weight: 600; }
+.banner { padding: 10px 14px; border-radius: 4px; font-weight: 600; margin: 10px 0; }
+.banner.pass { background: #dff3e0; color: #155b1b; }
+.banner.fail { background: #fbe0e0; color: #9b1111; }
+figure { margin: 10px 0 18px; }
+figure svg { max-width: 100%; height: auto; display: block; border: 1px solid #e2e5e9; }
+.warn { background: #fff6e0; border-left: 4px solid #e6a100; padding: 6px 12px; }
+.grid { display: flex; gap: 18px; flex-wrap: wrap; align-items: flex-start; }
+footer { margin-top: 32px; color: #777; font-size: 12px; }
+@media print { body { background: #fff; } main { padding: 0; } h2 { break-after: avoid; }
+  figure { break-inside: avoid; } }
+";
+
+/// `s` with `& < > " '` escaped for HTML text and attributes.
+pub fn escape(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    for c in s.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\'' => out.push_str("&#39;"),
+            c => out.push(c),
+        }
+    }
+    out
+}
+
+/// `f(v)` of a finite value, else a dash.
+fn num(v: Option<f64>, f: impl Fn(f64) -> String) -> String {
+    v.filter(|x| x.is_finite()).map_or_else(|| "—".into(), f)
+}
+
+fn speed(w: f64) -> String {
+    num(Some(w), |w| format!("{w:.1} rad/s ({:.0} rpm)", w * RPM))
+}
+
+/// API 684 separation of a speed from `[lo, hi]`, percent of the nearer end (0 inside).
+fn separation(w: f64, lo: f64, hi: f64) -> f64 {
+    if w < lo {
+        100.0 * (lo - w) / lo
+    } else if w > hi {
+        100.0 * (w - hi) / hi
+    } else {
+        0.0
+    }
+}
+
+fn verdict(p: Option<bool>) -> (&'static str, &'static str) {
+    match p {
+        Some(true) => ("pass", "pass"),
+        Some(false) => ("fail", "fail"),
+        None => ("", "—"),
+    }
+}
+
+/// A table: header cells, then rows of already escaped cells (`<td>`s included).
+fn table(out: &mut String, head: &[&str], rows: &[String]) {
+    out.push_str("<table><thead><tr>");
+    for h in head {
+        let _ = write!(out, "<th>{}</th>", escape(h));
+    }
+    out.push_str("</tr></thead><tbody>\n");
+    for r in rows {
+        let _ = writeln!(out, "{r}");
+    }
+    out.push_str("</tbody></table>\n");
+}
+
+fn figure(out: &mut String, svg: &str, caption: &str) {
+    let svg = svg.trim_start();
+    let svg = svg
+        .strip_prefix("<?xml")
+        .map_or(svg, |s| s.split_once("?>").map_or(s, |x| x.1));
+    let _ = writeln!(
+        out,
+        "<figure>{}<figcaption class=\"lead\">{}</figcaption></figure>",
+        svg.trim(),
+        escape(caption)
+    );
+}
+
+fn supports_name(s: crate::model::api::StaticSupports) -> &'static str {
+    match s {
+        crate::model::api::StaticSupports::Elastic => "elastic",
+        crate::model::api::StaticSupports::Rigid => "rigid",
+    }
+}
+
+fn td(s: &str) -> String {
+    format!("<td>{}</td>", escape(s))
+}
+
+fn td_num(s: &str) -> String {
+    format!("<td class=\"num\">{}</td>", escape(s))
+}
+
+/// The model's summary rows (beam rotors in detail).
+fn model_rows(report: &ReportResponse, rotor: &RotorInput) -> Vec<String> {
+    let mut rows = vec![];
+    let mut row =
+        |k: &str, v: String| rows.push(format!("<tr><th>{}</th>{}</tr>", escape(k), td(&v)));
+    match rotor {
+        RotorInput::Beam(b) => {
+            let elements: i64 = b.shaft.iter().map(|s| s.elements.unwrap_or(1).max(1)).sum();
+            let length: f64 = b.shaft.iter().map(|s| s.length).sum();
+            let dmax = b.shaft.iter().map(|s| s.outer_diameter).fold(0.0, f64::max);
+            row(
+                "shaft",
+                format!(
+                    "{} segments, {length:.3} m long, up to {:.1} mm in diameter",
+                    b.shaft.len(),
+                    dmax * 1e3
+                ),
+            );
+            row("elements / nodes", format!("{elements} / {}", elements + 1));
+            let names: Vec<&str> = b.materials.keys().map(String::as_str).collect();
+            row("materials", names.join(", "));
+            let mass: f64 = b.disks.iter().map(|d| d.mass).sum();
+            let at: Vec<String> = b
+                .disks
+                .iter()
+                .map(|d| format!("{:.1} kg at node {}", d.mass, d.node))
+                .collect();
+            row(
+                "disks",
+                format!("{} ({mass:.1} kg): {}", b.disks.len(), at.join(", ")),
+            );
+            let sup: Vec<String> = b
+                .supports
+                .iter()
+                .map(|s| {
+                    format!(
+                        "node {}: {}",
+                        s.node,
+                        super::plot_audit::support_stiffness(s)
+                    )
+                })
+                .collect();
+            row(
+                "supports",
+                format!("{}: {}", b.supports.len(), sup.join("; ")),
+            );
+        }
+        RotorInput::Jeffcott(_) => row("rotor", "Jeffcott rotor".into()),
+        RotorInput::Matrices(_) => row("rotor", "given as matrices".into()),
+    }
+    let s = &report.static_deflection;
+    let kg = if s.gravity > 0.0 {
+        s.weight / s.gravity
+    } else {
+        f64::NAN
+    };
+    row(
+        "total weight",
+        format!(
+            "{} ({})",
+            num(Some(s.weight), |w| format!("{w:.1} N")),
+            num(Some(kg), |m| format!("{m:.2} kg"))
+        ),
+    );
+    let r = report.operating_range;
+    row(
+        "operating range",
+        format!("{} to {}", speed(r.min), speed(r.max)),
+    );
+    let u: Vec<String> = report
+        .unbalances
+        .iter()
+        .map(|u| {
+            format!(
+                "{} g mm at node {} ({:.0}°)",
+                num(Some(u.amount * 1e6), |a| format!("{a:.0}")),
+                u.node,
+                u.phase.to_degrees()
+            )
+        })
+        .collect();
+    row(
+        "unbalance",
+        if u.is_empty() {
+            "—".into()
+        } else {
+            u.join("; ")
+        },
+    );
+    row("damping model of the plots", report.level1.model.clone());
+    rows
+}
+
+fn peak_cells(p: &ResponsePeak) -> String {
+    let (class, word) = verdict(p.passes);
+    let half = p.half_power.map_or("—".into(), |[a, b]| {
+        if a.is_finite() && b.is_finite() {
+            format!("{:.0}–{:.0} rpm", a * RPM, b * RPM)
+        } else {
+            "—".into()
+        }
+    });
+    format!(
+        "{}{}{}{}{}{}{}<td class=\"{class}\">{word}</td>",
+        td_num(&format!("{:.1}", p.speed)),
+        td_num(&num(Some(p.speed), |w| format!("{:.0}", w * RPM))),
+        td_num(&num(Some(p.amplitude), |a| format!("{:.2}", a * 1e6))),
+        td_num(&num(p.amplification_factor, |a| format!("{a:.2}"))),
+        td_num(&half),
+        td_num(&num(p.separation_margin, |s| format!("{s:.1}%"))),
+        td_num(&num(p.required_margin, |s| format!("{s:.1}%"))),
+    )
+}
+
+/// The audit page of `report` on `rotor`.
+pub fn html(report: &ReportResponse, rotor: &RotorInput) -> Result<String, Err> {
+    let range = [report.operating_range.min, report.operating_range.max];
+    let (lo, hi) = (range[0], range[1]);
+    let mut o = String::with_capacity(1 << 20);
+    o.push_str("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n");
+    o.push_str("<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n");
+    let _ = writeln!(
+        o,
+        "<title>Rotordynamic audit</title>\n<style>{STYLE}</style>\n</head>\n<body><main>"
+    );
+    o.push_str("<h1>Rotordynamic audit</h1>\n");
+    let _ = writeln!(
+        o,
+        "<p class=\"lead\">API 684 / API 617 checks of the rotor over its operating range {} to {}.</p>",
+        escape(&speed(lo)),
+        escape(&speed(hi))
+    );
+
+    o.push_str("<h2 id=\"verdict\">Verdict</h2>\n");
+    let failed = report.checks.iter().filter(|c| !c.passes).count();
+    let (class, msg) = match failed {
+        0 => ("pass", format!("All {} checks pass.", report.checks.len())),
+        n => (
+            "fail",
+            format!("{n} of {} checks fail.", report.checks.len()),
+        ),
+    };
+    let _ = writeln!(o, "<div class=\"banner {class}\">{}</div>", escape(&msg));
+    let rows: Vec<String> = report
+        .checks
+        .iter()
+        .map(|c| {
+            let (class, word) = verdict(Some(c.passes));
+            format!(
+                "<tr class=\"check {class}\">{}{}{}{}<td class=\"verdict\">{word}</td></tr>",
+                td(&c.check),
+                td(&c.model),
+                td_num(&c.value),
+                td(&c.requirement)
+            )
+        })
+        .collect();
+    table(
+        &mut o,
+        &["check", "damping model", "value", "requirement", "verdict"],
+        &rows,
+    );
+
+    o.push_str("<h2 id=\"model\">Model</h2>\n");
+    o.push_str("<table><tbody>\n");
+    for r in model_rows(report, rotor) {
+        let _ = writeln!(o, "{r}");
+    }
+    o.push_str("</tbody></table>\n");
+    figure(
+        &mut o,
+        &rotor_sketch(rotor)?,
+        "Rotor sketch: lengths to scale, diameters exaggerated.",
+    );
+
+    o.push_str("<h2 id=\"map\">Undamped critical speed map</h2>\n");
+    let map = &report.critical_speed_map;
+    figure(
+        &mut o,
+        &critical_speed_map_with(map, Some(range))?,
+        "Natural frequencies at zero speed against the support stiffness; dots: the actual supports.",
+    );
+    let rows: Vec<String> = map
+        .intersections
+        .iter()
+        .map(|i| {
+            format!(
+                "<tr>{}{}{}{}{}{}{}</tr>",
+                td_num(&i.mode.to_string()),
+                td_num(&i.support.to_string()),
+                td_num(&i.node.to_string()),
+                td(&i.coefficient),
+                td_num(&num(Some(i.stiffness), |k| format!("{k:.3e}"))),
+                td_num(&num(Some(i.frequency), |f| format!("{f:.1}"))),
+                td_num(&num(Some(i.frequency), |f| format!("{:.0}", f * RPM))),
+            )
+        })
+        .collect();
+    table(
+        &mut o,
+        &[
+            "mode",
+            "support",
+            "node",
+            "coefficient",
+            "stiffness [N/m]",
+            "frequency [rad/s]",
+            "[rpm]",
+        ],
+        &rows,
+    );
+
+    o.push_str("<h2 id=\"static\">Static deflection and bearing loads</h2>\n");
+    let s = &report.static_deflection;
+    figure(
+        &mut o,
+        &super::plot_audit::static_deflection(s)?,
+        &format!(
+            "Under gravity {:.4} m/s², {} supports.",
+            s.gravity,
+            supports_name(s.supports_model)
+        ),
+    );
+    let rows: Vec<String> = s
+        .supports
+        .iter()
+        .map(|r| {
+            let share = if s.weight > 0.0 {
+                Some(100.0 * r.reaction / s.weight)
+            } else {
+                None
+            };
+            format!(
+                "<tr>{}{}{}{}{}</tr>",
+                td_num(&r.support.to_string()),
+                td_num(&r.node.to_string()),
+                td_num(&num(Some(r.reaction), |v| format!("{v:.1}"))),
+                td_num(&num(Some(r.reaction_x), |v| format!("{v:.1}"))),
+                td_num(&num(share, |v| format!("{v:.1}%"))),
+            )
+        })
+        .collect();
+    table(
+        &mut o,
+        &[
+            "support",
+            "node",
+            "load y [N]",
+            "load x [N]",
+            "share of weight",
+        ],
+        &rows,
+    );
+
+    o.push_str("<h2 id=\"campbell\">Campbell diagram and critical speeds</h2>\n");
+    let c = &report.campbell;
+    figure(
+        &mut o,
+        &campbell_with(c, Some(range))?,
+        "Whirl frequencies and decay rates against speed; shaded: the operating range.",
+    );
+    let rows: Vec<String> = c
+        .critical_speeds
+        .iter()
+        .enumerate()
+        .map(|(k, &w)| {
+            format!(
+                "<tr>{}{}{}{}</tr>",
+                td_num(&(k + 1).to_string()),
+                td_num(&num(Some(w), |w| format!("{w:.1}"))),
+                td_num(&num(Some(w), |w| format!("{:.0}", w * RPM))),
+                td_num(&num(Some(separation(w, lo, hi)), |m| format!("{m:.1}%"))),
+            )
+        })
+        .collect();
+    table(
+        &mut o,
+        &[
+            "critical speed",
+            "[rad/s]",
+            "[rpm]",
+            "separation from the range",
+        ],
+        &rows,
+    );
+    let _ = writeln!(
+        o,
+        "<p>Onset of instability: {}.</p>",
+        escape(&c.threshold.map_or("none in the speeds swept".into(), speed))
+    );
+
+    o.push_str("<h2 id=\"unbalance\">Unbalance response</h2>\n");
+    let u = &report.unbalance;
+    let rows: Vec<String> = u
+        .nodes
+        .iter()
+        .flat_map(|n| {
+            n.peaks
+                .iter()
+                .map(move |p| format!("<tr>{}{}</tr>", td_num(&n.node.to_string()), peak_cells(p)))
+        })
+        .collect();
+    let head = [
+        "node",
+        "N_c [rad/s]",
+        "[rpm]",
+        "peak [µm]",
+        "AF",
+        "half-power",
+        "SM",
+        "required SM",
+        "verdict",
+    ];
+    table(&mut o, &head, &rows);
+    figure(&mut o, &unbalance_with(u, Some(range))?, &u.note);
+
+    o.push_str("<h2 id=\"level1\">Level I stability screen (API 617)</h2>\n");
+    let l = &report.level1;
+    let (div, unit) = stiffness_unit(l.q0.into_iter().chain(l.qa).fold(0.0, f64::max));
+    let q = |v: Option<f64>| num(v, |q| format!("{:.3} {unit}", q / div));
+    let (class, word) = verdict(l.passes);
+    let rows = vec![format!(
+        "<tr>{}{}{}{}{}<td class=\"{class}\">{word}</td></tr>",
+        td_num(&q(l.q0)),
+        td_num(&q(l.qa)),
+        td_num(&num(l.ratio, |r| format!("{r:.2}"))),
+        td_num(&num(l.log_decrement_0, |d| format!("{d:.3}"))),
+        td_num(&num(l.log_decrement_at_qa, |d| format!("{d:.3}"))),
+    )];
+    table(
+        &mut o,
+        &[
+            "q0 (δ = 0)",
+            "q_A",
+            "q0 / q_A",
+            "δ at q = 0",
+            "δ at q_A",
+            "Level I",
+        ],
+        &rows,
+    );
+    figure(
+        &mut o,
+        &level1(l)?,
+        &format!(
+            "Log decrement of the first forward mode at {} against the cross-coupling at nodes {:?}.",
+            speed(l.speed),
+            l.nodes
+        ),
+    );
+
+    o.push_str("<h2 id=\"models\">Damping models compared</h2>\n");
+    o.push_str("<p>The same margins under each damping model: hysteretic, equivalent viscous and nonviscous damping need not agree.</p>\n");
+    models_table(&mut o, report, lo, hi);
+
+    let mut warnings: Vec<&String> = vec![];
+    let all = [
+        &report.warnings,
+        &report.critical_speed_map.warnings,
+        &report.static_deflection.warnings,
+        &report.campbell.warnings,
+        &report.unbalance.warnings,
+        &report.level1.warnings,
+    ];
+    for w in all.into_iter().flatten() {
+        if !warnings.contains(&w) {
+            warnings.push(w);
+        }
+    }
+    if !warnings.is_empty() {
+        o.push_str("<h2 id=\"warnings\">Warnings</h2>\n<div class=\"warn\"><ul>\n");
+        for w in warnings {
+            let _ = writeln!(o, "<li>{}</li>", escape(w));
+        }
+        o.push_str("</ul></div>\n");
+    }
+    o.push_str(
+        "<footer>Generated by Whirl. Speeds in rad/s and rpm; amplitudes zero to peak.</footer>\n",
+    );
+    o.push_str("</main></body>\n</html>\n");
+    Ok(o)
+}
+
+/// One column per damping model.
+fn models_table(o: &mut String, report: &ReportResponse, lo: f64, hi: f64) {
+    let ms = &report.models;
+    let mut head = vec![String::new()];
+    head.extend(ms.iter().map(|m| m.model.clone()));
+    let head: Vec<&str> = head.iter().map(String::as_str).collect();
+    let q_max = ms.iter().filter_map(|m| m.q0).fold(0.0, f64::max);
+    let (div, unit) = stiffness_unit(q_max);
+    let first = |m: &crate::model::api::ModelMargins| m.peaks.first().cloned();
+    type Cell = Box<dyn Fn(&crate::model::api::ModelMargins) -> String>;
+    let rows: Vec<(&str, Cell)> = vec![
+        (
+            "critical speeds [rpm]",
+            Box::new(|m| {
+                let v: Vec<String> = m
+                    .critical_speeds
+                    .iter()
+                    .filter(|w| w.is_finite())
+                    .map(|w| format!("{:.0}", w * RPM))
+                    .collect();
+                if v.is_empty() {
+                    "none".into()
+                } else {
+                    v.join(", ")
+                }
+            }),
+        ),
+        (
+            "nearest separation",
+            Box::new(move |m| {
+                let sm = m
+                    .critical_speeds
+                    .iter()
+                    .filter(|w| w.is_finite())
+                    .map(|&w| separation(w, lo, hi))
+                    .fold(f64::INFINITY, f64::min);
+                num(Some(sm), |s| format!("{s:.1}%"))
+            }),
+        ),
+        (
+            "instability onset",
+            Box::new(|m| m.threshold.map_or("none in range".into(), speed)),
+        ),
+        (
+            "log decrement at MCS",
+            Box::new(|m| num(m.log_decrement, |d| format!("{d:.3}"))),
+        ),
+        (
+            "Level I q0",
+            Box::new(move |m| num(m.q0, |q| format!("{:.3} {unit}", q / div))),
+        ),
+        (
+            "first peak N_c",
+            Box::new(move |m| num(first(m).map(|p| p.speed), |w| format!("{:.0} rpm", w * RPM))),
+        ),
+        (
+            "first peak AF",
+            Box::new(move |m| {
+                num(first(m).and_then(|p| p.amplification_factor), |a| {
+                    format!("{a:.2}")
+                })
+            }),
+        ),
+        (
+            "first peak SM (required)",
+            Box::new(move |m| match first(m) {
+                Some(p) => format!(
+                    "{} ({})",
+                    num(p.separation_margin, |s| format!("{s:.1}%")),
+                    num(p.required_margin, |s| format!("{s:.1}%"))
+                ),
+                None => "—".into(),
+            }),
+        ),
+    ];
+    let mut out = vec![];
+    for (name, cell) in &rows {
+        let mut r = format!("<tr><th>{}</th>", escape(name));
+        for m in ms {
+            // Coloured where API 684 / 617 set a limit.
+            let verdict = match *name {
+                "first peak SM (required)" => first(m).and_then(|p| p.passes),
+                "log decrement at MCS" => {
+                    m.log_decrement.filter(|d| d.is_finite()).map(|d| d >= 0.1)
+                }
+                "instability onset" => Some(m.threshold.is_none_or(|t| t > hi)),
+                _ => None,
+            };
+            let class = match verdict {
+                Some(true) => " pass",
+                Some(false) => " fail",
+                None => "",
+            };
+            let _ = write!(r, "<td class=\"num{class}\">{}</td>", escape(&cell(m)));
+        }
+        r.push_str("</tr>");
+        out.push(r);
+    }
+    table(o, &head, &out);
+}
