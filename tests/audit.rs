@@ -38,6 +38,16 @@ async fn level1_q0_of_a_viscous_jeffcott_rotor_is_c_sqrt_k_over_m() {
         assert!((num(&ld[0]) - num(&v["log_decrement_0"])).abs() < 1e-12);
         assert!(num(&ld[2]) > 0.0 && num(&ld[3]) < 0.0, "{v}");
     }
+    // Without a range, 21 values up to about twice q0, found first.
+    let body = json!({"rotor": rotor, "damping": {"model": "viscous"}, "speed": 0, "node": 0});
+    let (status, v) = post_json("/v1/level1", &body).await;
+    assert_eq!(status, 200, "{v}");
+    let q = v["cross_coupling"].as_array().unwrap();
+    let exact = c * (k / m).sqrt();
+    assert_eq!(q.len(), 21);
+    assert!((num(&v["q0"]) / exact - 1.0).abs() < 1e-6, "{v}");
+    let top = num(&q[20]) / exact;
+    assert!((1.0..=8.0).contains(&top), "range ends at {top} q0");
 }
 
 #[tokio::test]
@@ -381,4 +391,45 @@ async fn the_report_gathers_the_audit_and_renders_as_a_page() {
         "non-finite number on the page"
     );
     assert!(!page.contains("http://") && !page.contains("https://") || page.contains("xmlns"));
+}
+
+#[tokio::test]
+async fn level1_on_anisotropic_bearings_agrees_with_a_modal_analysis_at_q0() {
+    // Rotor A: two anisotropic, cross-coupled bearings (doubled coordinates). At q0 the first
+    // forward pole of the rotor with a skew support kxy = q0, kyx = -q0 at node 5 is on the
+    // imaginary axis.
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/ross/aniso.json");
+    let data: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let rotor = data["rotor"].clone();
+    let speed = 500.0;
+    let body = json!({"rotor": rotor, "damping": {"model": "viscous"}, "speed": speed, "node": 5});
+    let (status, v) = post_json("/v1/level1", &body).await;
+    assert_eq!(status, 200, "{v}");
+    let q0 = num(&v["q0"]);
+    assert!(q0 > 0.0 && num(&v["log_decrement_0"]) > 0.0, "{v}");
+    for (q, sign) in [(q0, 0.0), (0.9 * q0, -1.0), (1.1 * q0, 1.0)] {
+        let mut r = rotor.clone();
+        r["supports"]
+            .as_array_mut()
+            .unwrap()
+            .push(json!({"node": 5, "kxx": 0.0, "kxy": q, "kyx": -q, "kyy": 0.0}));
+        let (status, m) =
+            post_json("/v1/modal", &json!({"rotor": r, "damping": {"model": "viscous"}, "speed": speed})).await;
+        assert_eq!(status, 200, "{m}");
+        let first = m["poles"]
+            .as_array()
+            .unwrap()
+            .iter()
+            // Overdamped poles (frequency ~ 0) do not whirl.
+            .filter(|p| p["whirl"] == "forward" && num(&p["frequency"]) > 1e-6 * num(&p["decay_rate"]).abs())
+            .min_by(|a, b| num(&a["frequency"]).total_cmp(&num(&b["frequency"])))
+            .unwrap();
+        let (sigma, w) = (num(&first["decay_rate"]), num(&first["frequency"]));
+        assert!((w - num(&v["frequency_0"])).abs() < 0.05 * w, "{first}");
+        if sign == 0.0 {
+            assert!(sigma.abs() < 1e-8 * w, "at q0 {q0}: {first}");
+        } else {
+            assert_eq!(sigma.signum(), sign, "at {q}: {first}");
+        }
+    }
 }

@@ -305,7 +305,13 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                 .iter()
                 .map(|&(n, w)| (time::translation(&system, n), w))
                 .collect();
-            let result = level1::level1(&system, &model.damping, *speed, &placing, qs, control)
+            let qs = if qs.is_empty() {
+                level1::auto_range(&system, &model.damping, *speed, &placing, 21, control)
+                    .map_err(|e| rigid_body(e, &model.rotor))?
+            } else {
+                qs.clone()
+            };
+            let result = level1::level1(&system, &model.damping, *speed, &placing, &qs, control)
                 .map_err(|e| rigid_body(e, &model.rotor))?;
             let qa = match qa {
                 Some(q) => Some((
@@ -317,7 +323,7 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
             Ok(Outcome::Level1 {
                 speed: *speed,
                 at: at.clone(),
-                qs: qs.clone(),
+                qs,
                 result,
                 qa,
                 model: model.damping.name(),

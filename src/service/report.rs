@@ -54,9 +54,19 @@ pub fn escape(s: &str) -> String {
     out
 }
 
-/// `f(v)` of a finite value, else a dash.
+/// `f(v)` of a finite value (a rounded `-0` without its sign), else a dash.
 fn num(v: Option<f64>, f: impl Fn(f64) -> String) -> String {
-    v.filter(|x| x.is_finite()).map_or_else(|| "—".into(), f)
+    let s = v.filter(|x| x.is_finite()).map_or_else(|| "—".into(), f);
+    match s.strip_prefix('-') {
+        Some(t)
+            if t.chars()
+                .take_while(|c| c.is_ascii_digit() || *c == '.')
+                .all(|c| c == '0' || c == '.') =>
+        {
+            t.into()
+        }
+        _ => s,
+    }
 }
 
 fn speed(w: f64) -> String {
@@ -136,8 +146,9 @@ fn model_rows(report: &ReportResponse, rotor: &RotorInput) -> Vec<String> {
             row(
                 "shaft",
                 format!(
-                    "{} segments, {length:.3} m long, up to {:.1} mm in diameter",
+                    "{} segment{}, {length:.3} m long, up to {:.1} mm in diameter",
                     b.shaft.len(),
+                    if b.shaft.len() == 1 { "" } else { "s" },
                     dmax * 1e3
                 ),
             );

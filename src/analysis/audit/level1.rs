@@ -6,7 +6,8 @@
 //! obeys `m s^2 + c s + k - i q = 0`, whose forward pole crosses `Re s = 0` at
 //! `q0 = c sqrt(k/m)`. The term is isotropic (skew), so it keeps the rotor's coordinates, and it
 //! stores no energy, so the damping models' modal bases (built on the symmetric parts at rest)
-//! do not change with `q`. The first forward mode is the forward rotor pole of lowest frequency.
+//! do not change with `q`. The first forward mode is the forward rotor pole of lowest frequency
+//! that oscillates.
 //! `q0`, where its decay rate changes sign, is bracketed on the requested grid (extended by
 //! doubling up to 1000 times its end when the grid stays stable) and refined by the Illinois
 //! method to 1e-9 relative.
@@ -74,9 +75,39 @@ pub fn first_forward(
     Ok(set
         .rotor
         .iter()
-        .filter(|p| p.whirl == Whirl::Forward && p.frequency() > 0.0)
+        // Overdamped poles (heavily damped bearings) do not whirl: not a mode to screen.
+        .filter(|p| p.whirl == Whirl::Forward && p.frequency() > 1e-6 * p.s.norm())
         .min_by(|a, b| a.frequency().total_cmp(&b.frequency()))
         .map(|p| (p.decay_rate(), p.frequency())))
+}
+
+/// `count` values from 0 to twice `q0` (found by growing `q` by 4 from a millionth of the
+/// largest stiffness on the diagonal), or to that largest stiffness if the mode stays stable.
+pub fn auto_range(
+    system: &RotorSystem,
+    damping: &DampingModel,
+    speed: f64,
+    at: &Placing,
+    count: usize,
+    control: &Control,
+) -> Result<Vec<f64>, AnalysisError> {
+    let k = system.stiffness();
+    let scale = (0..k.nrows()).map(|i| k[(i, i)].abs()).fold(0.0, f64::max).max(1e-300);
+    let mut q = 1e-6 * scale;
+    let mut stop = scale;
+    while q < scale {
+        control.check()?;
+        match first_forward(system, damping, speed, at, q)? {
+            Some((sigma, _)) if sigma >= 0.0 => {
+                stop = 2.0 * q;
+                break;
+            }
+            Some(_) => q *= 4.0,
+            None => break,
+        }
+    }
+    let n = count.max(2);
+    Ok((0..n).map(|i| stop * i as f64 / (n - 1) as f64).collect())
 }
 
 /// The Level I curve over `qs` (increasing, >= 0) and `q0`.

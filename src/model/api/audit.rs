@@ -202,7 +202,9 @@ pub struct Level1Request {
     #[serde(default)]
     pub nodes: Option<Vec<i64>>,
     /// Total cross-coupled stiffness q, N/m (`kxy = q`, `kyx = -q`, shared by the nodes).
-    pub cross_coupling: LinearRange,
+    /// Default: 21 values from 0 to about twice q0, found first.
+    #[serde(default)]
+    pub cross_coupling: Option<LinearRange>,
     /// Stage data for the anticipated cross-coupling q_A (optional); when given, its nodes
     /// replace `node`/`nodes` for the distribution of q.
     #[serde(default)]
@@ -353,8 +355,8 @@ pub struct ReportRequest {
     /// every model in `models` too.
     pub damping: DampingInput,
     pub operating_range: OperatingRange,
-    /// Speeds of the Campbell and unbalance sweeps (default 0 to 1.25 x the maximum speed,
-    /// 121 speeds).
+    /// Speeds of the Campbell and unbalance sweeps (default 0 to 1.25 x the maximum speed:
+    /// 121 speeds for Campbell, 481 for the unbalance response).
     #[serde(default)]
     pub speeds: Option<SpeedsInput>,
     /// Unbalances (default: API 684's `U = 6350 W / N` g mm at the heaviest disk's node, W the
@@ -364,8 +366,8 @@ pub struct ReportRequest {
     /// Nodes of the unbalance response (default: the unbalances' nodes and the supports').
     #[serde(default)]
     pub nodes: Option<Vec<i64>>,
-    /// Cross-coupling of the Level I screen (default 0 to 2e7 N/m, 21 values) and where it acts
-    /// (default: the unbalance node).
+    /// Cross-coupling of the Level I screen (default: 21 values from 0 to about twice q0) and
+    /// where it acts (default: the unbalance node).
     #[serde(default)]
     pub cross_coupling: Option<LinearRange>,
     #[serde(default)]
@@ -375,8 +377,7 @@ pub struct ReportRequest {
     /// Critical speed map stiffness (default 1e5 to 1e10 N/m, 31 values).
     #[serde(default)]
     pub stiffness: Option<LogRange>,
-    /// Campbell branches (default 6: the lowest three per whirl direction... every branch
-    /// below 1.5 x the maximum speed).
+    /// Campbell branches: those below this frequency, rad/s (default 1.5 x the last speed).
     #[serde(default)]
     pub max_frequency: Option<f64>,
     /// Damping models compared side by side (default: hysteretic, equivalent and nonviscous

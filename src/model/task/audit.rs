@@ -6,7 +6,7 @@ use super::{Model, Task, TaskKind, sweep_cost};
 use crate::analysis::audit::frequency::Excitation;
 use crate::model::api::{
     CriticalSpeedMapRequest, DampingInput, EquivalentInput, FrequencyResponseRequest,
-    Level1Request, LinearRange, LogRange, NoOptions, NonviscousInput, OperatingRange,
+    Level1Request, LogRange, NoOptions, NonviscousInput, OperatingRange,
     ReportRequest, RotorInput, SpeedRange, SpeedsInput, StaticRequest, StaticSupports,
     SteadyUnbalanceInput, SweepRequest, UnbalanceResponseRequest,
 };
@@ -17,6 +17,9 @@ use serde_json::Value;
 
 /// API 617's `B_c C` (3 x 9.55) with `P` in kW, `N` in rpm, `D_c`, `H_c` in mm: kN/mm.
 const QA_CONSTANT: f64 = 3.0 * 9.55;
+
+/// Values of an automatic Level I range.
+const AUTO_COUNT: usize = 21;
 
 /// rad/s to rpm.
 const RPM: f64 = 60.0 / (2.0 * std::f64::consts::PI);
@@ -256,16 +259,18 @@ impl Level1Request {
     pub fn parse(&self, limits: &Limits) -> Result<Task, Invalid> {
         let mut bad = Invalid::default();
         let speed = bad.check("speed", non_negative(self.speed));
-        let c = &self.cross_coupling;
-        let qs = grid(
-            "cross_coupling",
-            c.start,
-            c.stop,
-            c.count,
-            false,
-            limits.max_speeds,
-            &mut bad,
-        );
+        let qs = match &self.cross_coupling {
+            Some(c) => grid(
+                "cross_coupling",
+                c.start,
+                c.stop,
+                c.count,
+                false,
+                limits.max_speeds,
+                &mut bad,
+            ),
+            None => Some(vec![]),
+        };
         let model = Model::parse(&self.rotor, &self.damping, limits, bad)?;
         let mut bad = Invalid::default();
         let (at, qa) = placing(self, model.rotor.node_count(), speed, &mut bad);
@@ -277,8 +282,8 @@ impl Level1Request {
         let mut size = model.size();
         // The skew supports are isotropic: the coordinates stay as they are.
         size.points = size.points.max(1);
-        let solves = qs.len() + 60;
-        let values = 3 * qs.len() as u64 + 32;
+        let solves = qs.len().max(AUTO_COUNT) + 60;
+        let values = 3 * qs.len().max(AUTO_COUNT) as u64 + 32;
         Ok(Task {
             warnings: model.warnings(speed, speed),
             kind: TaskKind::Level1 {
@@ -510,11 +515,6 @@ impl ReportRequest {
             .cross_coupling_nodes
             .clone()
             .unwrap_or_else(|| vec![unbalances.first().map_or(0, |u| u.node)]);
-        let cross_coupling = self.cross_coupling.clone().unwrap_or(LinearRange {
-            start: 0.0,
-            stop: 2e7,
-            count: 21,
-        });
         let max_frequency = self.max_frequency.or(Some(1.5 * 1.25 * hi));
         let map = CriticalSpeedMapRequest {
             rotor: self.rotor.clone(),
@@ -543,11 +543,17 @@ impl ReportRequest {
             }
             .parse_campbell(limits)
         };
+        // A finer grid for the response: its peaks are a few rad/s wide.
+        let response_speeds = self.speeds.clone().unwrap_or(SpeedsInput::Range(SpeedRange {
+            start: 0.0,
+            stop: 1.25 * hi,
+            count: 481,
+        }));
         let unbalance_for = |damping: &DampingInput| {
             UnbalanceResponseRequest {
                 rotor: self.rotor.clone(),
                 damping: damping.clone(),
-                speeds: speeds.clone(),
+                speeds: response_speeds.clone(),
                 unbalances: unbalances.clone(),
                 nodes: Some(nodes.clone()),
                 operating_range: Some(self.operating_range),
@@ -568,7 +574,7 @@ impl ReportRequest {
                 } else {
                     Some(cc_nodes.clone())
                 },
-                cross_coupling: cross_coupling.clone(),
+                cross_coupling: self.cross_coupling.clone(),
                 machine: self.machine.clone(),
             }
             .parse(limits)

@@ -157,8 +157,9 @@ fn beam(root: &Area<'_>, b: &BeamInput) -> Result<(), Err> {
             ))?;
         }
         let n = s.elements.unwrap_or(1).max(1) as usize;
-        for k in node..=(node + n).min(nodes.len() - 1) {
-            half_at[k] = half_at[k].max(h);
+        let end = (node + n).min(nodes.len() - 1);
+        for half in &mut half_at[node.min(end)..=end] {
+            *half = (*half).max(h);
         }
         node += n;
         x += s.length;
@@ -296,9 +297,9 @@ fn beam(root: &Area<'_>, b: &BeamInput) -> Result<(), Err> {
         let (w, h) = text_box(&line, NOTE);
         let y = top + h * below[n];
         below[n] += 1;
-        let centred = [(p - w / 2).clamp(2, W - 2 - w), y, 0, y + h];
-        let (x, y) = if labels.take([centred[0], y, centred[0] + w, y + h]) {
-            (centred[0], y)
+        let cx = (p - w / 2).clamp(2, W - 2 - w);
+        let (x, y) = if labels.take([cx, y, cx + w, y + h]) {
+            (cx, y)
         } else {
             labels.place((p, y), &line, NOTE, p > W / 2)
         };

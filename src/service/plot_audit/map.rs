@@ -1,0 +1,279 @@
+//! The undamped critical speed map and the static deflection with its bending moment.
+
+use super::*;
+
+/// Undamped critical speed map: natural frequency against support stiffness, log-log.
+pub fn critical_speed_map(c: &CriticalSpeedMapResponse) -> Result<String, Err> {
+    critical_speed_map_with(c, None)
+}
+
+/// [`critical_speed_map`] with the operating speeds `shade = [min, max]` (rad/s) shaded.
+pub fn critical_speed_map_with(
+    c: &CriticalSpeedMapResponse,
+    shade: Option<[f64; 2]>,
+) -> Result<String, Err> {
+    let ok = |v: f64| v.is_finite() && v > 0.0;
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (960, 680)).into_drawing_area();
+        root.fill(&WHITE)?;
+        let ks = c
+            .stiffness
+            .iter()
+            .copied()
+            .chain(c.intersections.iter().map(|i| i.stiffness));
+        let (k0, k1) = log_range(ks, 0.0);
+        let fs = c.frequencies.iter().flatten().copied();
+        let fs = fs
+            .chain(c.intersections.iter().map(|i| i.frequency))
+            .chain(shade.into_iter().flatten());
+        let (f0, f1) = log_range(fs, 0.06);
+        let mut chart = ChartBuilder::on(&root)
+            .caption("Undamped critical speed map", (FONT, 22))
+            .margin(14)
+            .x_label_area_size(52)
+            .y_label_area_size(80)
+            .right_y_label_area_size(86)
+            .build_cartesian_2d((k0..k1).log_scale(), (f0..f1).log_scale())?
+            .set_secondary_coord((k0..k1).log_scale(), (f0 * RPM..f1 * RPM).log_scale());
+        chart
+            .configure_mesh()
+            .x_desc("support stiffness [N/m]")
+            .y_desc("natural frequency [rad/s]")
+            .x_labels(log_labels(k0, k1))
+            .y_labels(log_labels(f0, f1))
+            .x_label_formatter(&|v| log_tick(*v))
+            .y_label_formatter(&|v| log_tick(*v))
+            .label_style((FONT, TICK))
+            .axis_desc_style((FONT, DESC))
+            .light_line_style(GRID)
+            .draw()?;
+        chart
+            .configure_secondary_axes()
+            .y_desc("natural frequency [rpm]")
+            .y_labels(log_labels(f0 * RPM, f1 * RPM))
+            .y_label_formatter(&|v| log_tick(*v))
+            .label_style((FONT, TICK))
+            .axis_desc_style((FONT, DESC))
+            .x_labels(0)
+            .draw()?;
+        let area = frame(&root, &chart)?;
+        log_minor_labels(&root, area, (f0, f1), false)?;
+        log_minor_labels(&root, area, (f0 * RPM, f1 * RPM), true)?;
+        let mut labels = Labels::new(area);
+        if let Some([lo, hi]) = shade.filter(|s| ok(s[0]) && ok(s[1]) && s[1] > s[0]) {
+            let (lo, hi) = (lo.max(f0), hi.min(f1));
+            chart.draw_series(std::iter::once(Rectangle::new(
+                [(k0, lo), (k1, hi)],
+                SHADE.filled(),
+            )))?;
+            let at = chart.backend_coord(&(k0, hi));
+            let s = "operating range";
+            let (w, h) = text_box(s, NOTE);
+            labels.block([at.0, at.1, at.0 + w + 12, at.1 + h + 6]);
+            text(
+                &root,
+                s,
+                (at.0 + 6, at.1 + 3),
+                NOTE,
+                INK,
+                (HPos::Left, VPos::Top),
+            )?;
+        }
+        for (m, ys) in c.frequencies.iter().enumerate() {
+            let color = PALETTE[m % PALETTE.len()];
+            let pts: Vec<(f64, f64)> = c
+                .stiffness
+                .iter()
+                .zip(ys)
+                .filter(|(k, f)| ok(**k) && ok(**f))
+                .map(|(k, f)| (*k, *f))
+                .collect();
+            chart.draw_series(LineSeries::new(pts.iter().copied(), color.stroke_width(2)))?;
+            labels.block_path(&pixels(&chart, &pts));
+            if let Some(end) = pts.last() {
+                let at = chart.backend_coord(end);
+                let s = format!("mode {}", m + 1);
+                let (w, h) = text_box(&s, NOTE);
+                let (x, y) = (at.0 - w - 6, at.1 - h - 3);
+                labels.block([x, y, x + w, y + h]);
+                text(&root, &s, (x, y), NOTE, color, (HPos::Left, VPos::Top))?;
+            }
+        }
+        // One marker per distinct point (two supports often meet a mode at the same place).
+        let mut seen: Vec<(f64, f64)> = vec![];
+        let mut points = vec![];
+        for i in &c.intersections {
+            let (k, f) = (i.stiffness, i.frequency);
+            let inside = ok(k) && ok(f) && (k0..=k1).contains(&k) && (f0..=f1).contains(&f);
+            if inside
+                && !seen
+                    .iter()
+                    .any(|(a, b)| (a / k).ln().abs() < 1e-3 && (b / f).ln().abs() < 1e-3)
+            {
+                seen.push((k, f));
+                points.push((k, f, PALETTE[(i.mode.max(1) - 1) % PALETTE.len()]));
+            }
+        }
+        for &(k, f, color) in &points {
+            let at = chart.backend_coord(&(k, f));
+            labels.block([at.0 - 6, at.1 - 6, at.0 + 6, at.1 + 6]);
+            chart.draw_series([
+                Circle::new((k, f), 6, color.filled()),
+                Circle::new((k, f), 6, INK.stroke_width(1)),
+            ])?;
+        }
+        for &(k, f, color) in &points {
+            let at = chart.backend_coord(&(k, f));
+            let s = format!("{f:.1} rad/s ({:.0} rpm)", f * RPM);
+            label(&root, &mut labels, &s, at, color, false)?;
+        }
+        root.present()?;
+    }
+    Ok(svg)
+}
+
+/// Static deflection (µm or mm) with the support reactions over the bending moment, along the
+/// shaft.
+pub fn static_deflection(s: &StaticResponse) -> Result<String, Err> {
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (960, 820)).into_drawing_area();
+        root.fill(&WHITE)?;
+        let (top, bottom) = root.split_vertically(450);
+        let xs = s
+            .nodes
+            .iter()
+            .map(|n| n.position)
+            .chain(s.stations.iter().map(|t| t.position));
+        let (x0, x1) = range(xs, 0.02);
+        let max = s
+            .nodes
+            .iter()
+            .map(|n| n.deflection.abs())
+            .filter(|v| v.is_finite())
+            .fold(0.0, f64::max);
+        let (scale, unit) = length_unit(max);
+        let ds = s.nodes.iter().map(|n| n.deflection * scale).chain([0.0]);
+        let (y0, y1) = range(ds, 0.18);
+        let caption = format!("Static deflection under gravity (weight {:.1} N)", s.weight);
+        let mut chart = ChartBuilder::on(&top)
+            .caption(caption, (FONT, 22))
+            .margin(14)
+            .x_label_area_size(48)
+            .y_label_area_size(84)
+            .build_cartesian_2d(x0..x1, y0..y1)?;
+        chart
+            .configure_mesh()
+            .x_desc("axial position [m]")
+            .y_desc(format!("deflection y [{unit}]"))
+            .x_label_formatter(&lin_tick(x1 - x0))
+            .y_label_formatter(&lin_tick(y1 - y0))
+            .label_style((FONT, TICK))
+            .axis_desc_style((FONT, DESC))
+            .light_line_style(GRID)
+            .draw()?;
+        let area = frame(&root, &chart)?;
+        chart.draw_series(LineSeries::new(
+            [(x0, 0.0), (x1, 0.0)],
+            INK.mix(0.6).stroke_width(1),
+        ))?;
+        let pts: Vec<(f64, f64)> = s
+            .nodes
+            .iter()
+            .filter(|n| n.position.is_finite() && n.deflection.is_finite())
+            .map(|n| (n.position, n.deflection * scale))
+            .collect();
+        chart.draw_series(LineSeries::new(
+            pts.iter().copied(),
+            PALETTE[0].stroke_width(2),
+        ))?;
+        chart.draw_series(pts.iter().map(|p| Circle::new(*p, 3, PALETTE[0].filled())))?;
+        let mut labels = Labels::new(area);
+        labels.block_path(&pixels(&chart, &pts));
+        if let Some(p) = pts.iter().min_by(|a, b| a.1.total_cmp(&b.1)) {
+            let at = chart.backend_coord(p);
+            let s = format!("max {:.1} {unit} at {:.3} m", p.1.abs(), p.0);
+            label(&root, &mut labels, &s, at, PALETTE[0], false)?;
+        }
+        for r in &s.supports {
+            let Some(n) = s.nodes.iter().find(|n| n.node == r.node) else {
+                continue;
+            };
+            if !(n.position.is_finite() && n.deflection.is_finite() && r.reaction.is_finite()) {
+                continue;
+            }
+            let p = (n.position, n.deflection * scale);
+            let at = chart.backend_coord(&p);
+            let tri = vec![at, (at.0 - 8, at.1 + 15), (at.0 + 8, at.1 + 15)];
+            root.draw(&Polygon::new(tri, PALETTE[1].filled()))?;
+            labels.block([at.0 - 8, at.1, at.0 + 8, at.1 + 15]);
+            let mut s = format!("R{} = {:.1} N (node {})", r.support, r.reaction, r.node);
+            if r.reaction_x.is_finite() && r.reaction_x.abs() > 1e-6 * r.reaction.abs().max(1.0) {
+                s = format!(
+                    "R{} = {:.1} N, x {:.1} N (node {})",
+                    r.support, r.reaction, r.reaction_x, r.node
+                );
+            }
+            // Centred under the support when there is room.
+            let (w, h) = text_box(&s, NOTE);
+            let r = [at.0 - w / 2, at.1 + 19, at.0 + w / 2, at.1 + 19 + h];
+            if labels.take(r) {
+                text(
+                    &root,
+                    &s,
+                    (r[0], r[1]),
+                    NOTE,
+                    PALETTE[1],
+                    (HPos::Left, VPos::Top),
+                )?;
+            } else {
+                let left = p.0 > (x0 + x1) / 2.0;
+                label(&root, &mut labels, &s, (at.0, at.1 + 15), PALETTE[1], left)?;
+            }
+        }
+
+        let ms: Vec<(f64, f64)> = s
+            .stations
+            .iter()
+            .filter(|t| t.position.is_finite() && t.bending_moment.is_finite())
+            .map(|t| (t.position, t.bending_moment))
+            .collect();
+        let (m0, m1) = range(ms.iter().map(|p| p.1).chain([0.0]), 0.15);
+        let mut chart = ChartBuilder::on(&bottom)
+            .caption("Bending moment", (FONT, 22))
+            .margin(14)
+            .x_label_area_size(48)
+            .y_label_area_size(84)
+            .build_cartesian_2d(x0..x1, m0..m1)?;
+        chart
+            .configure_mesh()
+            .x_desc("axial position [m]")
+            .y_desc("bending moment [N m]")
+            .x_label_formatter(&lin_tick(x1 - x0))
+            .y_label_formatter(&lin_tick(m1 - m0))
+            .label_style((FONT, TICK))
+            .axis_desc_style((FONT, DESC))
+            .light_line_style(GRID)
+            .draw()?;
+        let area = frame(&root, &chart)?;
+        chart.draw_series(LineSeries::new(
+            [(x0, 0.0), (x1, 0.0)],
+            INK.mix(0.6).stroke_width(1),
+        ))?;
+        chart.draw_series(LineSeries::new(
+            ms.iter().copied(),
+            PALETTE[2].stroke_width(2),
+        ))?;
+        if let Some(p) = ms.iter().max_by(|a, b| a.1.abs().total_cmp(&b.1.abs())) {
+            let at = chart.backend_coord(p);
+            let mut labels = Labels::new(area);
+            labels.block_path(&pixels(&chart, &ms));
+            let s = format!("|M| max {:.1} N m at {:.3} m", p.1.abs(), p.0);
+            chart.draw_series([Circle::new(*p, 4, PALETTE[2].filled())])?;
+            label(&root, &mut labels, &s, at, PALETTE[2], false)?;
+        }
+        root.present()?;
+    }
+    Ok(svg)
+}
