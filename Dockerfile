@@ -16,10 +16,15 @@ COPY migrations migrations
 RUN cargo build --release --locked --bin whirl && strip target/release/whirl
 
 FROM debian:bookworm-slim
-RUN useradd --system --uid 10001 --no-create-home --shell /usr/sbin/nologin whirl \
-    && mkdir /data && chown whirl /data
+LABEL org.opencontainers.image.title="whirl" \
+      org.opencontainers.image.description="Rotordynamics computation service: Campbell diagrams, stability, time and unbalance responses, API 684 audits, with hysteretic damping treated properly" \
+      org.opencontainers.image.licenses="MIT"
+# A numeric user and group: Kubernetes' runAsNonRoot can verify it without /etc/passwd.
+RUN groupadd --system --gid 10001 whirl \
+    && useradd --system --uid 10001 --gid 10001 --no-create-home --shell /usr/sbin/nologin whirl \
+    && mkdir /data && chown 10001:10001 /data
 COPY --from=build /src/target/release/whirl /usr/local/bin/whirl
-USER whirl
+USER 10001:10001
 # The embedded job store (SQLite) lives here unless WHIRL_DATABASE_URL names a PostgreSQL.
 ENV HOST=0.0.0.0 PORT=8080 RUST_LOG=info WHIRL_DATA_DIR=/data
 VOLUME /data

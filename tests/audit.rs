@@ -165,7 +165,8 @@ async fn frequency_response_of_a_jeffcott_rotor() {
     // Viscous with rotating damping, spun at 2: its circulatory term -i Omega c_r.
     let (cr, cn, speed2) = (0.05, 0.03, 2.0);
     let v = |w: f64| C::new(1.0 - w * w, 0.0) + i * (cn + cr) * w - i * speed2 * cr;
-    let cases: [(Value, f64, &dyn Fn(f64) -> C); 2] = [
+    type Denominator<'a> = &'a dyn Fn(f64) -> C;
+    let cases: [(Value, f64, Denominator); 2] = [
         (
             json!({"rotor": jeffcott(json!({"loss_factor_rotating": er, "loss_factor_nonrotating": en})),
                    "damping": {"model": "hysteretic"}}),
@@ -413,15 +414,20 @@ async fn level1_on_anisotropic_bearings_agrees_with_a_modal_analysis_at_q0() {
             .as_array_mut()
             .unwrap()
             .push(json!({"node": 5, "kxx": 0.0, "kxy": q, "kyx": -q, "kyy": 0.0}));
-        let (status, m) =
-            post_json("/v1/modal", &json!({"rotor": r, "damping": {"model": "viscous"}, "speed": speed})).await;
+        let (status, m) = post_json(
+            "/v1/modal",
+            &json!({"rotor": r, "damping": {"model": "viscous"}, "speed": speed}),
+        )
+        .await;
         assert_eq!(status, 200, "{m}");
         let first = m["poles"]
             .as_array()
             .unwrap()
             .iter()
             // Overdamped poles (frequency ~ 0) do not whirl.
-            .filter(|p| p["whirl"] == "forward" && num(&p["frequency"]) > 1e-6 * num(&p["decay_rate"]).abs())
+            .filter(|p| {
+                p["whirl"] == "forward" && num(&p["frequency"]) > 1e-6 * num(&p["decay_rate"]).abs()
+            })
             .min_by(|a, b| num(&a["frequency"]).total_cmp(&num(&b["frequency"])))
             .unwrap();
         let (sigma, w) = (num(&first["decay_rate"]), num(&first["frequency"]));

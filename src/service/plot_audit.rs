@@ -312,3 +312,48 @@ pub(crate) fn stiffness_unit(max: f64) -> (f64, &'static str) {
         (1.0, "N/m")
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ticks_read_well() {
+        assert_eq!(log_tick(1e6), "1e6");
+        assert_eq!(log_tick(2e6), "2e6");
+        assert_eq!(log_tick(2000.0), "2000");
+        assert_eq!(log_tick(10000.0), "10000");
+        assert_eq!(log_tick(5e-6), "5e-6");
+        assert_eq!(log_tick(0.05), "0.05");
+        assert_eq!(log_tick(f64::NAN), "");
+        assert_eq!(lin_tick(600.0)(&-100.0), "-100");
+        assert_eq!(lin_tick(1.5)(&0.2), "0.2");
+        assert_eq!(lin_tick(1.3)(&-1e-17), "0");
+        assert_eq!(log_labels(50.0, 5000.0), 3);
+    }
+
+    #[test]
+    fn labels_keep_apart_and_inside() {
+        let bounds = [0, 0, 600, 400];
+        let mut labels = Labels::new(bounds);
+        labels.block_path(&[(0, 200), (600, 200)]);
+        let mut boxes: Vec<Rect> = vec![];
+        for k in 0..12 {
+            let s = format!("label number {k}");
+            let (x, y) = labels.place((300, 200), &s, NOTE, k % 2 == 0);
+            let (w, h) = text_box(&s, NOTE);
+            let r = [x, y, x + w, y + h];
+            assert!(
+                r[0] >= 0 && r[1] >= 0 && r[2] <= 600 && r[3] <= 400,
+                "{r:?}"
+            );
+            assert!(!(r[1] < 202 && r[3] > 198), "{r:?} on the line");
+            assert!(boxes.iter().all(|b| !overlaps_for_test(b, &r)), "{r:?}");
+            boxes.push(r);
+        }
+    }
+
+    fn overlaps_for_test(a: &Rect, b: &Rect) -> bool {
+        a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3]
+    }
+}

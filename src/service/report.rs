@@ -238,7 +238,7 @@ fn peak_cells(p: &ResponsePeak) -> String {
     });
     format!(
         "{}{}{}{}{}{}{}<td class=\"{class}\">{word}</td>",
-        td_num(&format!("{:.1}", p.speed)),
+        td_num(&num(Some(p.speed), |w| format!("{w:.1}"))),
         td_num(&num(Some(p.speed), |w| format!("{:.0}", w * RPM))),
         td_num(&num(Some(p.amplitude), |a| format!("{:.2}", a * 1e6))),
         td_num(&num(p.amplification_factor, |a| format!("{a:.2}"))),
@@ -616,4 +616,24 @@ fn models_table(o: &mut String, report: &ReportResponse, lo: f64, hi: f64) {
         out.push(r);
     }
     table(o, &head, &out);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_print_without_nan_or_minus_zero() {
+        assert_eq!(num(Some(-0.01), |v| format!("{v:.1} N")), "0.0 N");
+        assert_eq!(num(Some(-0.5), |v| format!("{v:.1}")), "-0.5");
+        assert_eq!(num(Some(f64::NAN), |v| format!("{v}")), "—");
+        assert_eq!(num(None, |v| format!("{v}")), "—");
+        assert_eq!(speed(f64::INFINITY), "—");
+        assert_eq!(separation(120.0, 180.0, 300.0).round(), 33.0);
+        assert_eq!(separation(200.0, 180.0, 300.0), 0.0);
+        assert_eq!(
+            escape("<a href='x'>&</a>"),
+            "&lt;a href=&#39;x&#39;&gt;&amp;&lt;/a&gt;"
+        );
+    }
 }

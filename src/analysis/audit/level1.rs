@@ -92,7 +92,10 @@ pub fn auto_range(
     control: &Control,
 ) -> Result<Vec<f64>, AnalysisError> {
     let k = system.stiffness();
-    let scale = (0..k.nrows()).map(|i| k[(i, i)].abs()).fold(0.0, f64::max).max(1e-300);
+    let scale = (0..k.nrows())
+        .map(|i| k[(i, i)].abs())
+        .fold(0.0, f64::max)
+        .max(1e-300);
     let mut q = 1e-6 * scale;
     let mut stop = scale;
     while q < scale {

@@ -6,9 +6,9 @@ use super::{Model, Task, TaskKind, sweep_cost};
 use crate::analysis::audit::frequency::Excitation;
 use crate::model::api::{
     CriticalSpeedMapRequest, DampingInput, EquivalentInput, FrequencyResponseRequest,
-    Level1Request, LogRange, NoOptions, NonviscousInput, OperatingRange,
-    ReportRequest, RotorInput, SpeedRange, SpeedsInput, StaticRequest, StaticSupports,
-    SteadyUnbalanceInput, SweepRequest, UnbalanceResponseRequest,
+    Level1Request, LogRange, NoOptions, NonviscousInput, OperatingRange, ReportRequest, RotorInput,
+    SpeedRange, SpeedsInput, StaticRequest, StaticSupports, SteadyUnbalanceInput, SweepRequest,
+    UnbalanceResponseRequest,
 };
 use crate::model::error::{Invalid, finite, non_negative, positive};
 use crate::model::limits::{Cost, Limits, Size};
@@ -544,11 +544,14 @@ impl ReportRequest {
             .parse_campbell(limits)
         };
         // A finer grid for the response: its peaks are a few rad/s wide.
-        let response_speeds = self.speeds.clone().unwrap_or(SpeedsInput::Range(SpeedRange {
-            start: 0.0,
-            stop: 1.25 * hi,
-            count: 481,
-        }));
+        let response_speeds = self
+            .speeds
+            .clone()
+            .unwrap_or(SpeedsInput::Range(SpeedRange {
+                start: 0.0,
+                stop: 1.25 * hi,
+                count: 481,
+            }));
         let unbalance_for = |damping: &DampingInput| {
             UnbalanceResponseRequest {
                 rotor: self.rotor.clone(),

@@ -73,7 +73,7 @@ impl Labels {
 
     /// Top-left corner for `text` near `at`: the nearest free spot, right of it first unless
     /// `left`, whose leader line crosses no other label; the box and the leader are taken.
-    /// Without room, the nearest spot inside `bounds`.
+    /// Without one, the nearest free spot; without room, the nearest spot inside `bounds`.
     pub(crate) fn place(
         &mut self,
         at: (i32, i32),
@@ -105,7 +105,8 @@ impl Labels {
         });
         let b = self.bounds;
         let inside = |r: &Rect| r[0] >= b[0] && r[1] >= b[1] && r[2] <= b[2] && r[3] <= b[3];
-        let mut first = None;
+        // Fallbacks: the nearest free spot whose leader crosses a label, the nearest spot.
+        let (mut first, mut crossing) = (None, None);
         for (r, _) in spots.into_iter().filter(|(r, _)| inside(r)) {
             first.get_or_insert(r);
             if self.taken.iter().any(|t| overlaps(t, &r)) {
@@ -122,6 +123,7 @@ impl Labels {
                     })
                 });
             if crosses {
+                crossing.get_or_insert(r);
                 continue;
             }
             if far {
@@ -131,7 +133,9 @@ impl Labels {
             self.texts.push(r);
             return (r[0], r[1]);
         }
-        let r = first.unwrap_or([x + 7, y - h - 4, x + 7 + w, y - 4]);
+        let r = crossing
+            .or(first)
+            .unwrap_or([x + 7, y - h - 4, x + 7 + w, y - 4]);
         self.taken.push(r);
         self.texts.push(r);
         (r[0], r[1])
