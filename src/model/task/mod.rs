@@ -21,8 +21,9 @@ use crate::damping::nonviscous::BranchSet;
 
 mod audit;
 mod loads;
+mod report;
 
-pub use audit::{ModelPlan, ReportPlan};
+pub use report::{ModelPlan, ReportPlan};
 
 /// A validated rotor and damping model.
 #[derive(Debug, Clone)]

@@ -1,0 +1,258 @@
+//! The report: the audit's analyses planned as tasks, run one after the other.
+
+use super::audit::{RPM, beam, operating_range};
+use super::{Task, TaskKind};
+use crate::model::api::{
+    CriticalSpeedMapRequest, DampingInput, EquivalentInput, Level1Request, LogRange, NoOptions,
+    NonviscousInput, ReportRequest, RotorInput, SpeedRange, SpeedsInput, StaticRequest,
+    StaticSupports, SteadyUnbalanceInput, SweepRequest, UnbalanceResponseRequest,
+};
+use crate::model::error::Invalid;
+use crate::model::limits::{Cost, Limits};
+use crate::model::rotor::BeamRotor;
+
+/// The tasks a report runs.
+#[derive(Debug, Clone)]
+pub struct ReportPlan {
+    /// The rotor as given (the report shows it).
+    pub rotor: RotorInput,
+    pub range: (f64, f64),
+    pub map: Task,
+    pub statics: Task,
+    /// Under the request's damping model.
+    pub campbell: Task,
+    pub unbalance: Task,
+    pub unbalances: Vec<SteadyUnbalanceInput>,
+    /// Per compared model: its name, Campbell, Level I and unbalance tasks.
+    pub models: Vec<ModelPlan>,
+}
+
+impl ReportPlan {
+    /// Every task, in the order the report runs them.
+    pub fn tasks(&self) -> Vec<&Task> {
+        let mut all = vec![&self.map, &self.statics, &self.campbell, &self.unbalance];
+        for m in &self.models {
+            all.extend([&m.campbell, &m.level1, &m.unbalance]);
+        }
+        all
+    }
+
+    /// The tasks that run (a model's parts equal to the report's are not run twice).
+    fn run_tasks(&self) -> Vec<&Task> {
+        let mut all = vec![&self.map, &self.statics, &self.campbell, &self.unbalance];
+        for m in &self.models {
+            if m.primary {
+                all.push(&m.level1);
+            } else {
+                all.extend([&m.campbell, &m.level1, &m.unbalance]);
+            }
+        }
+        all
+    }
+}
+
+#[derive(Debug, Clone)]
+pub struct ModelPlan {
+    pub name: &'static str,
+    /// The request's own model: its Campbell and unbalance are the report's (run once).
+    pub primary: bool,
+    pub campbell: Task,
+    pub level1: Task,
+    pub unbalance: Task,
+}
+
+impl ReportRequest {
+    /// The models compared: the request's, or H, E, NVD (with the request's options where it
+    /// is one of them) and viscous.
+    fn models(&self) -> Vec<DampingInput> {
+        if let Some(m) = &self.models {
+            return m.clone();
+        }
+        let nv = match &self.damping {
+            DampingInput::Nonviscous(n) => n.clone(),
+            _ => NonviscousInput::default(),
+        };
+        let eq = match &self.damping {
+            DampingInput::Equivalent(e) => e.clone(),
+            _ => EquivalentInput::default(),
+        };
+        vec![
+            DampingInput::Hysteretic(NoOptions {}),
+            DampingInput::Equivalent(eq),
+            DampingInput::Nonviscous(nv),
+            DampingInput::Viscous(NoOptions {}),
+        ]
+    }
+
+    pub fn parse(&self, limits: &Limits) -> Result<Task, Invalid> {
+        let mut bad = Invalid::default();
+        let range = operating_range(&self.operating_range, "operating_range", &mut bad);
+        let rotor = beam(&self.rotor, limits, bad)?;
+        let (lo, hi) = range.expect("validated");
+        let speeds = self
+            .speeds
+            .clone()
+            .unwrap_or(SpeedsInput::Range(SpeedRange {
+                start: 0.0,
+                stop: 1.25 * hi,
+                count: 121,
+            }));
+        // API 684's unbalance: 6350 W / N g mm at the heaviest disk (or mid-shaft).
+        let unbalances = self.unbalances.clone().unwrap_or_else(|| {
+            let node = rotor
+                .disks()
+                .iter()
+                .max_by(|a, b| a.mass.total_cmp(&b.mass))
+                .map_or(rotor.nodes() / 2, |d| d.node);
+            let w_kg = rotor_mass(&rotor);
+            let u = 6350.0 * w_kg / (hi * RPM) * 1e-6;
+            vec![SteadyUnbalanceInput {
+                node: node as i64,
+                amount: u,
+                phase: 0.0,
+            }]
+        });
+        let nodes = self.nodes.clone().unwrap_or_else(|| {
+            let mut n: Vec<i64> = unbalances.iter().map(|u| u.node).collect();
+            n.extend(rotor.supports().iter().map(|s| s.node as i64));
+            n.extend(rotor.general_supports().iter().map(|s| s.node as i64));
+            n.sort_unstable();
+            n.dedup();
+            n
+        });
+        let cc_nodes = self
+            .cross_coupling_nodes
+            .clone()
+            .unwrap_or_else(|| vec![unbalances.first().map_or(0, |u| u.node)]);
+        let max_frequency = self.max_frequency.or(Some(1.5 * 1.25 * hi));
+        let map = CriticalSpeedMapRequest {
+            rotor: self.rotor.clone(),
+            stiffness: self.stiffness.clone().unwrap_or(LogRange {
+                start: 1e5,
+                stop: 1e10,
+                count: 31,
+            }),
+            modes: Some(4),
+        }
+        .parse(limits)?;
+        let statics = StaticRequest {
+            rotor: self.rotor.clone(),
+            gravity: None,
+            supports: Some(StaticSupports::Elastic),
+            speed: Some(hi),
+        }
+        .parse(limits)?;
+        let campbell_for = |damping: &DampingInput| {
+            SweepRequest {
+                rotor: self.rotor.clone(),
+                damping: damping.clone(),
+                speeds: speeds.clone(),
+                max_frequency,
+                modal_reduction: None,
+            }
+            .parse_campbell(limits)
+        };
+        // A finer grid for the response: its peaks are a few rad/s wide.
+        let response_speeds = self
+            .speeds
+            .clone()
+            .unwrap_or(SpeedsInput::Range(SpeedRange {
+                start: 0.0,
+                stop: 1.25 * hi,
+                count: 481,
+            }));
+        let unbalance_for = |damping: &DampingInput| {
+            UnbalanceResponseRequest {
+                rotor: self.rotor.clone(),
+                damping: damping.clone(),
+                speeds: response_speeds.clone(),
+                unbalances: unbalances.clone(),
+                nodes: Some(nodes.clone()),
+                operating_range: Some(self.operating_range),
+            }
+            .parse(limits)
+        };
+        let campbell = campbell_for(&self.damping)?;
+        let unbalance = unbalance_for(&self.damping)?;
+        let mut models = vec![];
+        for (i, d) in self.models().iter().enumerate() {
+            let level1 = Level1Request {
+                rotor: self.rotor.clone(),
+                damping: d.clone(),
+                speed: hi,
+                node: None,
+                nodes: if self.machine.is_some() {
+                    None
+                } else {
+                    Some(cc_nodes.clone())
+                },
+                cross_coupling: self.cross_coupling.clone(),
+                machine: self.machine.clone(),
+            }
+            .parse(limits)
+            .map_err(|mut e| {
+                e.prefix_paths(|p| match p.strip_prefix("damping") {
+                    Some(rest) => format!("models[{i}]{rest}"),
+                    None => p.to_string(),
+                });
+                e
+            })?;
+            let name = level1.model().map_or("", |m| m.damping.name());
+            let same = serde_json::to_value(d).ok() == serde_json::to_value(&self.damping).ok();
+            models.push(ModelPlan {
+                name,
+                primary: same,
+                campbell: campbell_for(d)?,
+                unbalance: unbalance_for(d)?,
+                level1,
+            });
+        }
+        let plan = ReportPlan {
+            rotor: self.rotor.clone(),
+            range: (lo, hi),
+            map,
+            statics,
+            campbell,
+            unbalance,
+            unbalances,
+            models,
+        };
+        let cost = combined(&plan.run_tasks());
+        Task {
+            warnings: plan.campbell.warnings.clone(),
+            kind: TaskKind::Report(Box::new(plan)),
+            cost,
+        }
+        .bounded(limits, "speeds")
+    }
+}
+
+/// Mass of shaft and disks, kg.
+fn rotor_mass(rotor: &BeamRotor) -> f64 {
+    let shaft: f64 = rotor
+        .elements()
+        .iter()
+        .map(|e| {
+            e.density
+                * e.length
+                * std::f64::consts::FRAC_PI_4
+                * (e.outer_diameter.powi(2) - e.inner_diameter.powi(2))
+        })
+        .sum();
+    shaft + rotor.disks().iter().map(|d| d.mass).sum::<f64>()
+}
+
+/// Tasks run one after the other: the largest heap, the sum of the work and the answers.
+fn combined(tasks: &[&Task]) -> Cost {
+    let mut c = tasks[0].cost;
+    for t in &tasks[1..] {
+        if t.cost.peak_bytes > c.peak_bytes {
+            c.size = t.cost.size;
+            c.peak_bytes = t.cost.peak_bytes;
+        }
+        c.response_bytes += t.cost.response_bytes;
+        c.work += t.cost.work;
+    }
+    c.peak_bytes += c.response_bytes;
+    c
+}
