@@ -266,6 +266,7 @@ pub fn peak(speed: f64, amplitude: f64, af: f64) -> ResponsePeak {
         separation_margin: Some(sm),
         required_margin: Some(req),
         passes: Some(sm >= req),
+        refined: true,
     }
 }
 

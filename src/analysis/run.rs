@@ -231,6 +231,8 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                 control,
             )?;
             let grid = speeds.as_slice();
+            // Refinement costs at most about two sweeps more; further peaks are interpolated.
+            let mut budget = 2 * grid.len() + 2 * peaks::SOLVES_PER_PEAK;
             let peaks = dofs
                 .iter()
                 .enumerate()
@@ -248,7 +250,7 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                         )?;
                         Ok(o[0][0].major())
                     };
-                    peaks::peaks(grid, &amp, &mut eval)
+                    peaks::peaks(grid, &amp, &mut eval, &mut budget)
                 })
                 .collect::<Result<Vec<_>, _>>()?;
             Ok(Outcome::Unbalance {

@@ -166,6 +166,7 @@ pub fn peaks(p: &[Peak], range: Option<(f64, f64)>) -> Vec<api::ResponsePeak> {
                 separation_margin: m.as_ref().map(|m| m.separation),
                 required_margin: m.as_ref().and_then(|m| m.required),
                 passes: m.and_then(|m| m.passes),
+                refined: p.refined,
             }
         })
         .collect()

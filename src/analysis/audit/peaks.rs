@@ -25,7 +25,13 @@ pub struct Peak {
     pub amplitude: f64,
     pub half_power: Option<[f64; 2]>,
     pub amplification_factor: Option<f64>,
+    /// Whether it was refined on the response (else interpolated linearly on the grid).
+    pub refined: bool,
 }
+
+/// Most steady solves one peak's refinement takes (Brent's maximisation and two roots, each
+/// well under 40 steps at 1e-10).
+pub const SOLVES_PER_PEAK: usize = 120;
 
 /// The margin of a peak from an operating range.
 #[derive(Debug, Clone, PartialEq)]
@@ -41,12 +47,16 @@ pub struct Margin {
 /// Relative tolerance of the refined speeds.
 const SPEED_TOL: f64 = 1e-10;
 
-/// Peaks of `amplitude` over `speeds` (increasing), refined with `eval(speed) = amplitude`.
+/// Peaks of `amplitude` over `speeds` (increasing), refined with `eval(speed) = amplitude`
+/// while `budget` (solves, shared between calls) lasts; the rest are interpolated on the grid
+/// (a response with many peaks costs at most its budget).
 pub fn peaks(
     speeds: &[f64],
     amplitude: &[f64],
     eval: &mut dyn FnMut(f64) -> Result<f64, AnalysisError>,
+    budget: &mut usize,
 ) -> Result<Vec<Peak>, AnalysisError> {
+    let mut grid = |x: f64| -> Result<f64, AnalysisError> { Ok(interpolate(speeds, amplitude, x)) };
     let n = speeds.len();
     let top = amplitude.iter().copied().fold(0.0_f64, f64::max);
     let mut out = vec![];
@@ -59,6 +69,14 @@ pub fn peaks(
         if !(a > amplitude[i - 1] && a >= amplitude[i + 1]) || a < 1e-9 * top {
             continue;
         }
+        let refined = *budget >= SOLVES_PER_PEAK;
+        let mut calls = 0;
+        let mut counted = |x: f64| {
+            calls += 1;
+            eval(x)
+        };
+        let eval: &mut dyn FnMut(f64) -> Result<f64, AnalysisError> =
+            if refined { &mut counted } else { &mut grid };
         let (speed, peak) = maximise(speeds[i - 1], speeds[i], speeds[i + 1], a, eval)?;
         let target = peak / std::f64::consts::SQRT_2;
         // Walk out from the peak to the first grid point at or below the target.
@@ -79,14 +97,27 @@ pub fn peaks(
             }
             _ => None,
         };
+        if refined {
+            *budget = budget.saturating_sub(calls.max(SOLVES_PER_PEAK / 4));
+        }
         out.push(Peak {
             speed,
             amplitude: peak,
             amplification_factor: half.map(|[a, b]| speed / (b - a)),
             half_power: half,
+            refined,
         });
     }
     Ok(out)
+}
+
+/// `amplitude` linear between the grid's speeds.
+fn interpolate(speeds: &[f64], amplitude: &[f64], x: f64) -> f64 {
+    let k = speeds
+        .partition_point(|&w| w <= x)
+        .clamp(1, speeds.len() - 1);
+    let t = (x - speeds[k - 1]) / (speeds[k] - speeds[k - 1]);
+    amplitude[k - 1] + t * (amplitude[k] - amplitude[k - 1])
 }
 
 /// API 684's margin of a peak at `nc` with amplification factor `af` from `[min, max]`.
@@ -284,7 +315,8 @@ mod tests {
         let speeds: Vec<f64> = (0..41).map(|i| 0.05 * i as f64).collect();
         let amp: Vec<f64> = speeds.iter().map(|&w| h(w)).collect();
         let mut eval = |w: f64| Ok(h(w));
-        let p = peaks(&speeds, &amp, &mut eval).unwrap();
+        let p = peaks(&speeds, &amp, &mut eval, &mut 1000).unwrap();
+        assert!(p[0].refined);
         assert_eq!(p.len(), 1);
         // Peak of w^2 / |1 - w^2 + 2 i zeta w| at w = 1 / sqrt(1 - 2 zeta^2).
         let exact = 1.0 / (1.0 - 2.0 * zeta * zeta).sqrt();
@@ -294,6 +326,10 @@ mod tests {
         assert!((h(n1) - t).abs() < 1e-9 * t && (h(n2) - t).abs() < 1e-9 * t);
         let af = p[0].amplification_factor.unwrap();
         assert!((af * 2.0 * zeta - 1.0).abs() < 2.0 * zeta, "AF {af}");
+        // Without a budget: the grid's own peak and linear half-power points.
+        let p = peaks(&speeds, &amp, &mut eval, &mut 0).unwrap();
+        assert!(!p[0].refined);
+        assert_eq!((p[0].speed, p[0].amplitude), (1.0, h(1.0)));
     }
 
     #[test]

@@ -319,7 +319,7 @@ pub struct OperatingRange {
     pub max: f64,
 }
 
-/// A resonance peak of an unbalance response curve (refined between the grid's speeds).
+/// A resonance peak of an unbalance response curve.
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
 pub struct ResponsePeak {
     /// Speed of the peak (the critical speed N_c), rad/s.
@@ -343,6 +343,11 @@ pub struct ResponsePeak {
     pub required_margin: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub passes: Option<bool>,
+    /// Whether the peak and its half-power points were refined on the response itself (one
+    /// steady solve per step, within a budget of about two sweeps per request); else they
+    /// are read off the grid by linear interpolation.
+    #[serde(default)]
+    pub refined: bool,
 }
 
 /// Body of `POST /v1/report`.
