@@ -67,63 +67,133 @@ impl Excitation {
     }
 }
 
-/// `Z` of `D(lambda) Z = rhs` on the model's coordinates (`rhs` of the model's physical
-/// size: `n`, or `2n` doubled).
-fn solve(
-    r: &Realized,
-    model: &DampedModel,
+/// The rotor realized at one spin speed, with what every excitation frequency shares: the
+/// state matrix `A(Omega)` (linear models) or the spun gyroscopic and circulatory matrices
+/// (hysteretic).
+struct Steady {
+    n: usize,
     speed: f64,
-    lambda: f64,
-    rhs: &[c64],
-) -> Result<Vec<c64>, AnalysisError> {
-    let big = r.size();
-    let zero = c64::new(0.0, 0.0);
-    let i1 = c64::new(0.0, 1.0);
-    match &model.kind {
-        ModelKind::Linear(state) => {
-            let size = state.size();
-            let a = state.at(speed);
-            let lhs = CMat::from_fn(size, size, |i, j| {
-                let diag = if i == j { i1 * lambda } else { zero };
-                diag - a[(i, j)]
-            });
-            let fm = CMat::from_fn(big, 1, |i, _| rhs[i]);
-            let minv_f = linalg::mass_solve(&r.mass, &fm)?;
-            let b = CMat::from_fn(size, 1, |i, _| if i < big { minv_f[(i, 0)] } else { zero });
-            let z = linalg::solve_complex(&lhs, &b)?;
-            Ok((0..big).map(|i| z[(big + i, 0)]).collect())
+    r: Realized,
+    /// `A(Omega)`, or `S G` and `S C_r`.
+    parts: Parts,
+}
+
+enum Parts {
+    Linear(CMat),
+    Hysteretic { sg: CMat, scr: CMat },
+}
+
+impl Steady {
+    fn at(system: &RotorSystem, model: &DampedModel, speed: f64) -> Self {
+        let r = Realized::at(system, speed);
+        let parts = match &model.kind {
+            ModelKind::Linear(state) => Parts::Linear(state.at(speed)),
+            ModelKind::Hysteretic(_) => Parts::Hysteretic {
+                sg: r.spun(&r.gyroscopic),
+                scr: r.spun(&r.damping_rotating),
+            },
+        };
+        Steady {
+            n: system.n(),
+            speed,
+            r,
+            parts,
         }
-        ModelKind::Hysteretic(_) => {
-            let sg = r.spun(&r.gyroscopic);
-            let scr = r.spun(&r.damping_rotating);
-            let sgn = |v: f64| {
-                if v > 0.0 {
-                    1.0
-                } else if v < 0.0 {
-                    -1.0
-                } else {
-                    0.0
-                }
-            };
-            let s_n = sgn(lambda);
-            let lhs = CMat::from_fn(big, big, |a, b| {
-                let s_r = if r.spin[a] > 0.0 {
-                    sgn(lambda - speed)
-                } else {
-                    sgn(lambda + speed)
+    }
+
+    /// `Z` of `D(lambda) Z = rhs` on the model's coordinates (`rhs` of the model's physical
+    /// size: `n`, or `2n` doubled).
+    fn solve(&self, lambda: f64, rhs: &[c64]) -> Result<Vec<c64>, AnalysisError> {
+        let (r, speed) = (&self.r, self.speed);
+        let big = r.size();
+        let zero = c64::new(0.0, 0.0);
+        let i1 = c64::new(0.0, 1.0);
+        match &self.parts {
+            Parts::Linear(a) => {
+                let size = a.nrows();
+                let lhs = CMat::from_fn(size, size, |i, j| {
+                    let diag = if i == j { i1 * lambda } else { zero };
+                    diag - a[(i, j)]
+                });
+                let fm = CMat::from_fn(big, 1, |i, _| rhs[i]);
+                let minv_f = linalg::mass_solve(&r.mass, &fm)?;
+                let b = CMat::from_fn(size, 1, |i, _| if i < big { minv_f[(i, 0)] } else { zero });
+                let z = linalg::solve_complex(&lhs, &b)?;
+                Ok((0..big).map(|i| z[(big + i, 0)]).collect())
+            }
+            Parts::Hysteretic { sg, scr } => {
+                let sgn = |v: f64| {
+                    if v > 0.0 {
+                        1.0
+                    } else if v < 0.0 {
+                        -1.0
+                    } else {
+                        0.0
+                    }
                 };
-                r.mass[(a, b)] * (-lambda * lambda)
-                    + (r.damping_nonrotating[(a, b)] + r.damping_rotating[(a, b)]) * (i1 * lambda)
-                    + sg[(a, b)] * (lambda * speed)
-                    + r.stiffness[(a, b)]
-                    - scr[(a, b)] * (i1 * speed)
-                    + r.loss_nonrotating[(a, b)] * (i1 * s_n)
-                    + r.loss_rotating[(a, b)] * (i1 * s_r)
-            });
-            let b = CMat::from_fn(big, 1, |i, _| rhs[i]);
-            let z = linalg::solve_complex(&lhs, &b)?;
-            Ok((0..big).map(|i| z[(i, 0)]).collect())
+                let s_n = sgn(lambda);
+                let lhs = CMat::from_fn(big, big, |a, b| {
+                    let s_r = if r.spin[a] > 0.0 {
+                        sgn(lambda - speed)
+                    } else {
+                        sgn(lambda + speed)
+                    };
+                    r.mass[(a, b)] * (-lambda * lambda)
+                        + (r.damping_nonrotating[(a, b)] + r.damping_rotating[(a, b)])
+                            * (i1 * lambda)
+                        + sg[(a, b)] * (lambda * speed)
+                        + r.stiffness[(a, b)]
+                        - scr[(a, b)] * (i1 * speed)
+                        + r.loss_nonrotating[(a, b)] * (i1 * s_n)
+                        + r.loss_rotating[(a, b)] * (i1 * s_r)
+                });
+                let b = CMat::from_fn(big, 1, |i, _| rhs[i]);
+                let z = linalg::solve_complex(&lhs, &b)?;
+                Ok((0..big).map(|i| z[(i, 0)]).collect())
+            }
         }
+    }
+
+    /// The steady orbit of every degree of freedom in `out` under `force` at `omega`.
+    fn orbits(
+        &self,
+        omega: f64,
+        force: &Harmonic,
+        out: &[usize],
+    ) -> Result<Vec<Orbit>, AnalysisError> {
+        let n = self.n;
+        let zero = c64::new(0.0, 0.0);
+        let any = |v: &[c64]| v.iter().any(|x| *x != zero);
+        let (a, b): (Vec<c64>, Vec<c64>) = match self.r.layout {
+            Layout::Doubled => {
+                let rhs: Vec<c64> = force
+                    .forward
+                    .iter()
+                    .copied()
+                    .chain(force.backward.iter().map(|g| g.conj()))
+                    .collect();
+                let z = self.solve(omega, &rhs)?;
+                (z[..n].to_vec(), z[n..2 * n].to_vec())
+            }
+            Layout::Single => {
+                let a = if any(&force.forward) {
+                    self.solve(omega, &force.forward)?
+                } else {
+                    vec![zero; n]
+                };
+                let b = if any(&force.backward) {
+                    // `conj b` solves the equation at `-omega`.
+                    self.solve(-omega, &force.backward)?
+                        .iter()
+                        .map(|c| c.conj())
+                        .collect()
+                } else {
+                    vec![zero; n]
+                };
+                (a, b)
+            }
+        };
+        Ok(out.iter().map(|&d| Orbit { a: a[d], b: b[d] }).collect())
     }
 }
 
@@ -137,40 +207,7 @@ pub fn harmonic(
     force: &Harmonic,
     out: &[usize],
 ) -> Result<Vec<Orbit>, AnalysisError> {
-    let n = system.n();
-    let r = Realized::at(system, speed);
-    let zero = c64::new(0.0, 0.0);
-    let any = |v: &[c64]| v.iter().any(|x| *x != zero);
-    let (a, b): (Vec<c64>, Vec<c64>) = match r.layout {
-        Layout::Doubled => {
-            let rhs: Vec<c64> = force
-                .forward
-                .iter()
-                .copied()
-                .chain(force.backward.iter().map(|g| g.conj()))
-                .collect();
-            let z = solve(&r, model, speed, omega, &rhs)?;
-            (z[..n].to_vec(), z[n..2 * n].to_vec())
-        }
-        Layout::Single => {
-            let a = if any(&force.forward) {
-                solve(&r, model, speed, omega, &force.forward)?
-            } else {
-                vec![zero; n]
-            };
-            let b = if any(&force.backward) {
-                // `conj b` solves the equation at `-omega`.
-                solve(&r, model, speed, -omega, &force.backward)?
-                    .iter()
-                    .map(|c| c.conj())
-                    .collect()
-            } else {
-                vec![zero; n]
-            };
-            (a, b)
-        }
-    };
-    Ok(out.iter().map(|&d| Orbit { a: a[d], b: b[d] }).collect())
+    Steady::at(system, model, speed).orbits(omega, force, out)
 }
 
 /// The orbit at `output` per unit force at `input` at each of `frequencies`.
@@ -184,12 +221,14 @@ pub fn frequency_response(
     control: &Control,
 ) -> Result<Vec<Orbit>, AnalysisError> {
     let force = input.1.at(input.0, system.n());
+    // Realized and its state matrix once: only the excitation frequency changes.
+    let steady = Steady::at(system, model, speed);
     control.expect(frequencies.len() as u64);
     frequencies
         .par_iter()
         .map(|&w| {
             control.check()?;
-            let o = harmonic(system, model, speed, w, &force, &[output])?;
+            let o = steady.orbits(w, &force, &[output])?;
             control.advance(1);
             Ok(o[0])
         })
