@@ -13,6 +13,8 @@ RUN mkdir src benches && echo 'fn main() {}' > src/main.rs && echo '' > src/lib.
 COPY src src
 COPY benches benches
 COPY migrations migrations
+# The OpenAPI document's request examples are compiled in (src/service/openapi/examples.rs).
+COPY examples examples
 RUN cargo build --release --locked --bin whirl && strip target/release/whirl
 
 FROM debian:bookworm-slim

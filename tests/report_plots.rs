@@ -289,7 +289,7 @@ fn shading_keeps_the_plain_plots() {
     assert_eq!(
         elements(&shaded, "rect")
             .iter()
-            .filter(|a| a["opacity"] == "0.22")
+            .filter(|a| a.get("opacity").is_some_and(|o| o == "0.22"))
             .count(),
         3,
         "two panels, legend"

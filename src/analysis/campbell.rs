@@ -103,7 +103,42 @@ pub fn campbell_below(
     Ok(r)
 }
 
+/// A bound that keeps the `n` rotor branches of lowest |frequency| at `speed` (`modes: n`):
+/// just above the n-th |frequency| of the full model there, with room for a reduced model's
+/// poles (within [`super::reduction::TOLERANCE`] of the full ones) to stay below it.
+pub fn lowest_bound(full: &DampedModel, speed: f64, n: usize) -> Result<f64, AnalysisError> {
+    let set = super::poles::poles_at(full, speed)?;
+    let mut freqs: Vec<f64> = set.rotor.iter().map(|p| p.s.im.abs()).collect();
+    freqs.sort_by(f64::total_cmp);
+    Ok(match freqs.get(n.saturating_sub(1)) {
+        Some(&f) => f * (1.0 + 1e-4) + f64::MIN_POSITIVE,
+        None => f64::INFINITY,
+    })
+}
+
 impl CampbellResult {
+    /// Keeps the `n` branches of lowest |frequency| at their first defined speed (mode numbers
+    /// unchanged), and the critical speeds of those.
+    pub fn keep_lowest(&mut self, n: usize) {
+        let first = |b: &Branch| {
+            let i = b.poles.iter().position(Option::is_some).unwrap_or(0);
+            (i, b.poles[i].map_or(f64::INFINITY, |s| s.im.abs()))
+        };
+        let mut order: Vec<usize> = (0..self.branches.len()).collect();
+        order.sort_by(|&a, &b| {
+            let (ia, fa) = first(&self.branches[a]);
+            let (ib, fb) = first(&self.branches[b]);
+            ia.cmp(&ib).then(fa.total_cmp(&fb))
+        });
+        let mut keep = vec![false; self.branches.len()];
+        for &i in order.iter().take(n) {
+            keep[i] = true;
+        }
+        let mut k = keep.into_iter();
+        self.branches.retain(|_| k.next().unwrap_or(false));
+        self.critical_speeds = critical_speeds(&self.speeds, &self.branches);
+    }
+
     /// Keeps the branches whose |frequency| at their first defined speed is at most `bound`
     /// (mode numbers unchanged), and the critical speeds of those.
     pub fn keep_below(&mut self, bound: f64) {

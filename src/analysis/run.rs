@@ -143,18 +143,27 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
             model,
             speeds,
             max_frequency,
+            modes,
             reduce,
         } => {
             let (system, damped) = build(model)?;
-            let r = campbell::campbell_below(
+            let speeds = speeds.as_slice();
+            let bound = match modes {
+                Some(n) => campbell::lowest_bound(&damped, speeds[0], *n)?.min(*max_frequency),
+                None => *max_frequency,
+            };
+            let mut r = campbell::campbell_below(
                 &system,
                 &model.damping,
                 &damped,
-                speeds.as_slice(),
-                *max_frequency,
+                speeds,
+                bound,
                 *reduce,
                 control,
             )?;
+            if let Some(n) = modes {
+                r.keep_lowest(*n);
+            }
             Ok(Outcome::Campbell(r))
         }
         TaskKind::Stability { model, speeds } => {

@@ -255,11 +255,13 @@ pub struct TimeSpec {
 }
 
 impl TimeSpec {
-    /// Output times `0, dt, 2 dt, ...` up to and including `duration`.
+    /// Output times `0, dt, 2 dt, ...` up to and including `duration` (each the double nearest
+    /// `k dt` when `dt` is a decimal: `0.0003`, not `0.00030000000000000003`).
     pub fn output_times(&self) -> Vec<f64> {
-        (0..sample_count(self.duration, self.output_interval))
-            .map(|k| k as f64 * self.output_interval)
-            .collect()
+        super::speeds::multiples(
+            self.output_interval,
+            sample_count(self.duration, self.output_interval),
+        )
     }
 }
 

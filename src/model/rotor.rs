@@ -344,16 +344,19 @@ impl BeamRotor {
         // Nodes as the segments count them, valid or not, so that a bad segment does not
         // also make every later node look missing.
         let nodes = element_count as usize + 1;
-        // With a segment's count invalid the nodes are unknown: check only the sign then.
-        let nodes_known = counts.iter().all(Option::is_some) && !too_many;
+        // With no shaft, or a segment's count invalid, the nodes are unknown: check only the
+        // sign then.
+        let nodes_known = !b.shaft.is_empty() && counts.iter().all(Option::is_some) && !too_many;
         let node_ok = |bad: &mut Invalid, at: String, node: i64| -> Option<usize> {
             if node >= 0 && (!nodes_known || (node as u64) < nodes as u64) {
                 Some(node as usize)
             } else {
-                bad.push(
-                    at,
-                    format!("node {node} is not on the shaft (nodes 0 to {})", nodes - 1),
-                );
+                let why = if node < 0 {
+                    format!("must be >= 0 (got {node})")
+                } else {
+                    format!("node {node} is not on the shaft (nodes 0 to {})", nodes - 1)
+                };
+                bad.push(at, why);
                 None
             }
         };

@@ -1,7 +1,96 @@
 //! Validated spin-speed grids.
 
 use super::api::SpeedsInput;
+
+/// rad/s to rpm: `60 / (2 pi)`.
+pub const RPM: f64 = 60.0 / (2.0 * std::f64::consts::PI);
 use super::error::{Invalid, finite};
+
+/// Largest integer a double holds exactly, and then every smaller one.
+const EXACT: f64 = 9_007_199_254_740_992.0;
+
+/// `x` as `m / 10^p` with integers `m` and `p <= 15` (the fewest decimals), when the double
+/// nearest that decimal is `x`, as it is for a decimal literal like `0.05`.
+fn decimal(x: f64) -> Option<(f64, i32)> {
+    (0..=15).find_map(|p| {
+        let scale = 10f64.powi(p);
+        let m = (x * scale).round();
+        (m.abs() < EXACT && m / scale == x).then_some((m, p))
+    })
+}
+
+/// `n >= 2` points from `a` to `b`, both included: `a + (b - a) i / (n - 1)`. When `a` and `b`
+/// are decimals (as typed) every point is the double nearest its exact value, computed as one
+/// division of exact integers, so a decimal grid prints as decimals (`0.15`, not
+/// `0.15000000000000002`); otherwise within round-off of it. The ends are `a` and `b` exactly.
+pub fn linear(a: f64, b: f64, n: usize) -> Vec<f64> {
+    let last = (n - 1) as f64;
+    let exact = match (decimal(a), decimal(b)) {
+        (Some((ma, pa)), Some((mb, pb))) => {
+            let p = pa.max(pb);
+            let (ma, mb) = (ma * 10f64.powi(p - pa), mb * 10f64.powi(p - pb));
+            let den = last * 10f64.powi(p);
+            // Every product and sum below is an integer below 2^53: exact.
+            (ma.abs() < EXACT
+                && mb.abs() < EXACT
+                && (ma.abs() + mb.abs()) * last < EXACT
+                && den < EXACT)
+                .then_some((ma, mb, den))
+        }
+        _ => None,
+    };
+    (0..n)
+        .map(|i| {
+            let k = i as f64;
+            if i == 0 {
+                a
+            } else if i + 1 == n {
+                b
+            } else if let Some((ma, mb, den)) = exact {
+                (ma * (last - k) + mb * k) / den
+            } else {
+                a + (b - a) * k / last
+            }
+        })
+        .collect()
+}
+
+/// `k dt` for `k = 0..n`: the double nearest `k dt` when `dt` is a decimal (`3 x 0.1` is `0.3`,
+/// not `0.30000000000000004`), `k * dt` otherwise.
+pub fn multiples(dt: f64, n: usize) -> Vec<f64> {
+    let exact = decimal(dt).filter(|&(m, _)| m.abs() * n as f64 <= EXACT);
+    (0..n)
+        .map(|k| match exact {
+            Some((m, p)) => k as f64 * m / 10f64.powi(p),
+            None => k as f64 * dt,
+        })
+        .collect()
+}
+
+/// `n >= 2` points from `a > 0` to `b`, both included, evenly spaced in log: `a (b/a)^(i/(n-1))`,
+/// each rounded to 12 significant digits when that moves it by round-off only (a few units in
+/// the last place), so that decades print as `1e7`, not `10000000.000000002`. The ends are `a`
+/// and `b` exactly.
+pub fn logarithmic(a: f64, b: f64, n: usize) -> Vec<f64> {
+    let last = (n - 1) as f64;
+    (0..n)
+        .map(|i| {
+            if i == 0 {
+                return a;
+            }
+            if i + 1 == n {
+                return b;
+            }
+            let x = a * (b / a).powf(i as f64 / last);
+            let tidy: f64 = format!("{x:.11e}").parse().unwrap_or(x);
+            if (tidy - x).abs() <= 8.0 * f64::EPSILON * x.abs() {
+                tidy
+            } else {
+                x
+            }
+        })
+        .collect()
+}
 
 /// Spin speeds, rad/s: finite, non-negative, strictly increasing, at least two.
 #[derive(Debug, Clone, PartialEq)]
@@ -34,14 +123,7 @@ impl SpeedGrid {
                     );
                 }
                 bad.into_result(|| {
-                    let (a, b, n) = (start.unwrap(), stop.unwrap(), r.count as usize);
-                    let h = (b - a) / (n - 1) as f64;
-                    // The last point is `stop` exactly, not a + (n-1) h with round-off.
-                    SpeedGrid(
-                        (0..n)
-                            .map(|i| if i + 1 == n { b } else { a + i as f64 * h })
-                            .collect(),
-                    )
+                    SpeedGrid(linear(start.unwrap(), stop.unwrap(), r.count as usize))
                 })
             }
             SpeedsInput::List(v) => {
@@ -79,5 +161,39 @@ impl SpeedGrid {
     /// First and last speed.
     pub fn range(&self) -> (f64, f64) {
         (self.0[0], self.0[self.0.len() - 1])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn decimal_grids_are_decimals_and_end_at_stop() {
+        let g = linear(0.0, 1.0, 21);
+        assert_eq!(g[3], 0.15);
+        assert_eq!(g[3].to_string(), "0.15");
+        assert_eq!(g[20], 1.0);
+        let g = linear(0.1, 0.3, 5);
+        assert_eq!(g, [0.1, 0.15, 0.2, 0.25, 0.3]);
+        let g = linear(0.0, 0.3, 4);
+        assert_eq!(g, [0.0, 0.1, 0.2, 0.3]);
+        let g = linear(-1.0, 1.0, 21);
+        assert_eq!(g[11], 0.1);
+        for (i, x) in linear(0.0, 2000.0, 201).iter().enumerate() {
+            assert_eq!(*x, 10.0 * i as f64);
+        }
+        // Not decimals: within round-off, increasing, the ends exact.
+        let third = 1.0 / 3.0;
+        let g = linear(third, 1e300, 7);
+        assert_eq!((g[0], g[6]), (third, 1e300));
+        assert!(g.windows(2).all(|w| w[0] < w[1]));
+        let t = multiples(1e-4, 40);
+        assert_eq!(t[3], 0.0003);
+        assert_eq!(t[39].to_string(), "0.0039");
+        let k = logarithmic(1e6, 1e11, 6);
+        assert_eq!(k, [1e6, 1e7, 1e8, 1e9, 1e10, 1e11]);
+        let k = logarithmic(1.0, 2.0, 5);
+        assert!((k[2] - 2f64.sqrt()).abs() < 1e-15);
     }
 }

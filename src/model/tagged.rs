@@ -40,9 +40,11 @@ pub fn variant<T: DeserializeOwned, E: Error>(value: Value) -> Result<T, E> {
     serde_path_to_error::deserialize(value).map_err(|e| {
         let path = e.path().to_string();
         let msg = e.into_inner().to_string();
-        match split_nested(&msg) {
-            // A tagged enum inside this variant: its path continues ours.
-            Some((inner, m)) => nested(&join(&path, inner), m.to_string()),
+        match split_all(&msg) {
+            // A tagged enum inside this variant: its paths continue ours.
+            Some(inner) => E::custom(nested_all(
+                inner.iter().map(|(p, m)| (join(&path, p), m.to_string())),
+            )),
             None if path == "." => E::custom(strip_position(&msg)),
             None => nested(&path, strip_position(&msg)),
         }
@@ -50,22 +52,27 @@ pub fn variant<T: DeserializeOwned, E: Error>(value: Value) -> Result<T, E> {
 }
 
 /// [`variant`] for a struct, refusing fields it does not know, before anything else (a typo
-/// is named as such, not as a missing field). The variant structs cannot use
-/// `deny_unknown_fields`: the OpenAPI schema would then forbid the tag that stands beside them.
+/// is named as such, not as a missing field), all of them at once. The variant structs cannot
+/// use `deny_unknown_fields`: the OpenAPI schema would then forbid the tag that stands beside
+/// them.
 pub fn strict_variant<T: DeserializeOwned, E: Error>(value: Value) -> Result<T, E> {
     let known = field_names::<T>();
-    if let Some(obj) = value.as_object()
-        && let Some(extra) = obj.keys().find(|k| !known.contains(&k.as_str()))
-    {
-        let msg = if known.is_empty() {
-            format!("unknown field `{extra}`: this takes no options")
-        } else {
-            format!(
-                "unknown field `{extra}`, expected one of: {}",
-                known.join(", ")
-            )
-        };
-        return Err(nested(extra, msg));
+    if let Some(obj) = value.as_object() {
+        let extra: Vec<(String, String)> = obj
+            .keys()
+            .filter(|k| !known.contains(&k.as_str()))
+            .map(|k| {
+                let msg = if known.is_empty() {
+                    format!("unknown field `{k}`: this takes no options")
+                } else {
+                    format!("unknown field `{k}`, expected one of: {}", known.join(", "))
+                };
+                (k.clone(), msg)
+            })
+            .collect();
+        if !extra.is_empty() {
+            return Err(E::custom(nested_all(extra)));
+        }
     }
     variant(value)
 }
@@ -118,16 +125,43 @@ fn nested<E: Error>(path: &str, msg: String) -> E {
     E::custom(nested_message(path, &msg))
 }
 
+/// Separates the entries of a message that carries several fields.
+const NEXT: char = '\u{1e}';
+
+/// The markers cannot appear inside an entry (a key may hold any character).
+fn clean(s: &str) -> std::borrow::Cow<'_, str> {
+    if s.contains([MARK, NEXT]) {
+        s.replace([MARK, NEXT], "\u{fffd}").into()
+    } else {
+        s.into()
+    }
+}
+
 /// A message that carries the path of a field inside the one being deserialised (see
 /// [`split_nested`]).
 pub fn nested_message(path: &str, msg: &str) -> String {
-    format!("{MARK}{path}{MARK}{msg}")
+    format!("{MARK}{}{MARK}{}", clean(path), clean(msg))
 }
 
-/// Splits a message made by this module into (inner path, message).
+/// A message that carries several fields, each with its path (see [`split_all`]).
+pub fn nested_all(entries: impl IntoIterator<Item = (String, String)>) -> String {
+    let parts: Vec<String> = entries
+        .into_iter()
+        .map(|(p, m)| nested_message(&p, &m))
+        .collect();
+    parts.join(&NEXT.to_string())
+}
+
+/// Splits a message made by this module into (inner path, message): its first entry.
 pub fn split_nested(msg: &str) -> Option<(&str, &str)> {
-    let rest = msg.strip_prefix(MARK)?;
-    rest.split_once(MARK)
+    split_all(msg).and_then(|v| v.into_iter().next())
+}
+
+/// Splits a message made by this module into its entries, (inner path, message) each.
+pub fn split_all(msg: &str) -> Option<Vec<(&str, &str)>> {
+    msg.split(NEXT)
+        .map(|part| part.strip_prefix(MARK)?.split_once(MARK))
+        .collect()
 }
 
 /// Joins serde_path_to_error paths (`.` is the root).

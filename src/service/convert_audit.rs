@@ -11,7 +11,7 @@ use crate::model::api;
 use crate::model::task::ReportPlan;
 use crate::model::task::TaskKind;
 
-const RPM: f64 = 60.0 / (2.0 * std::f64::consts::PI);
+use crate::model::speeds::RPM;
 
 pub fn critical_map(stiffness: &[f64], map: &CriticalMap) -> api::CriticalSpeedMapResponse {
     api::CriticalSpeedMapResponse {

@@ -141,13 +141,66 @@ impl<'de> Visitor<'de> for StrictVisitor {
     }
 }
 
-/// A data error at `outer`, whose message may carry a path inside it.
+/// The fields of a data error at `outer`, whose message may carry paths inside it.
+fn fields_at(outer: &str, msg: &str) -> Vec<(String, String)> {
+    match tagged::split_all(msg) {
+        Some(inner) => inner
+            .into_iter()
+            .map(|(p, m)| (tagged::join(outer, p), m.to_string()))
+            .collect(),
+        None => vec![(tagged::join(outer, "."), tagged::strip_position(msg))],
+    }
+}
+
+/// A data error at `outer`, whose message may carry paths inside it.
 fn at_path(outer: &str, msg: &str) -> ApiError {
-    let (path, message) = match tagged::split_nested(msg) {
-        Some((p, m)) => (tagged::join(outer, p), m.to_string()),
-        None => (tagged::join(outer, "."), tagged::strip_position(msg)),
-    };
-    ApiError::Invalid(Invalid::one(path, message))
+    let mut bad = Invalid::default();
+    for (path, message) in fields_at(outer, msg) {
+        bad.push(path, message);
+    }
+    ApiError::Invalid(bad)
+}
+
+/// Unknown fields reported (and taken out to look further) before the answer stops there.
+pub const MAX_UNKNOWN_FIELDS: usize = 32;
+
+/// Removes the object key that `path` (as serde_path_to_error prints it) ends with. A key may
+/// itself hold `.` or `[`: every key of an object that begins the path is tried.
+fn remove_at(value: &mut Value, path: &str) -> bool {
+    match value {
+        Value::Object(map) => {
+            if map.remove(path).is_some() {
+                return true;
+            }
+            let mut keys: Vec<String> = map
+                .keys()
+                .filter(|k| {
+                    path.len() > k.len()
+                        && path.starts_with(k.as_str())
+                        && matches!(path.as_bytes()[k.len()], b'.' | b'[')
+                })
+                .cloned()
+                .collect();
+            keys.sort_by_key(|k| std::cmp::Reverse(k.len()));
+            keys.into_iter().any(|k| {
+                let rest = &path[k.len()..];
+                let rest = rest.strip_prefix('.').unwrap_or(rest);
+                map.get_mut(&k).is_some_and(|v| remove_at(v, rest))
+            })
+        }
+        Value::Array(items) => {
+            let Some((index, rest)) = path
+                .strip_prefix('[')
+                .and_then(|p| p.split_once(']'))
+                .and_then(|(i, rest)| Some((i.parse::<usize>().ok()?, rest)))
+            else {
+                return false;
+            };
+            let rest = rest.strip_prefix('.').unwrap_or(rest);
+            !rest.is_empty() && items.get_mut(index).is_some_and(|v| remove_at(v, rest))
+        }
+        _ => false,
+    }
 }
 
 /// Parses a body, naming the path of the first bad field. Two passes: the JSON itself (400 for
@@ -186,16 +239,39 @@ pub fn parse<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, ApiError> {
     from_value(value)
 }
 
-/// The typed content of a JSON value, naming the path of the first bad field.
-pub fn from_value<T: DeserializeOwned>(value: Value) -> Result<T, ApiError> {
-    serde_path_to_error::deserialize(value).map_err(|e| {
+/// The typed content of a JSON value, naming the path of the bad fields: every unknown field
+/// (up to [`MAX_UNKNOWN_FIELDS`]: each is taken out and the content read again), then the
+/// first other error.
+pub fn from_value<T: DeserializeOwned>(mut value: Value) -> Result<T, ApiError> {
+    let mut bad = Invalid::default();
+    let mut removed = 0;
+    loop {
+        let e = match serde_path_to_error::deserialize::<_, T>(&value) {
+            Ok(v) if bad.is_empty() => return Ok(v),
+            Ok(_) => return Err(ApiError::Invalid(bad)),
+            Err(e) => e,
+        };
         let outer = e.path().to_string();
         let inner = e.into_inner();
-        match inner.classify() {
-            Category::Data => at_path(&outer, &inner.to_string()),
-            _ => ApiError::Malformed(format!("the body is not valid JSON: {inner}")),
+        if inner.classify() != Category::Data {
+            return Err(ApiError::Malformed(format!(
+                "the body is not valid JSON: {inner}"
+            )));
         }
-    })
+        let mut again = true;
+        for (path, message) in fields_at(&outer, &inner.to_string()) {
+            let unknown = message.starts_with("unknown field `");
+            if unknown && removed < MAX_UNKNOWN_FIELDS && remove_at(&mut value, &path) {
+                removed += 1;
+            } else {
+                again = false;
+            }
+            bad.push(path, message);
+        }
+        if !again {
+            return Err(ApiError::Invalid(bad));
+        }
+    }
 }
 
 #[cfg(test)]

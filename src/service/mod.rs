@@ -117,6 +117,8 @@ pub fn router(state: AppState) -> (Router, utoipa::openapi::OpenApi) {
         .routes(utoipa_axum::routes!(routes::metrics))
         .with_state(state.clone())
         .split_for_parts();
+    // After the routes: utoipa-axum replaces the component schemas as it registers each one.
+    let api = openapi::for_clients(api);
     let request_id = axum::http::HeaderName::from_static("x-request-id");
     let router = router
         .merge(SwaggerUi::new("/docs").url("/openapi.json", api.clone()))

@@ -11,7 +11,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use super::plot::{PALETTE, RPM, SHADE, range, runs};
+use super::plot::{PALETTE, RPM, SHADE, clip, range, runs};
 use crate::model::api::{
     CriticalSpeedMapResponse, FrequencyResponseResponse, Level1Response, StaticResponse,
     UnbalanceResponseResponse,
@@ -247,6 +247,30 @@ fn pixels<X: Ranged<ValueType = f64>, Y: Ranged<ValueType = f64>>(
     pts: &[(f64, f64)],
 ) -> Vec<(i32, i32)> {
     pts.iter().map(|p| chart.backend_coord(p)).collect()
+}
+
+/// The operating range shaded over the data box `[from, to]` of `chart`, named inside its
+/// top-left corner (the name's box kept free in `labels`).
+fn operating_range<X: Ranged<ValueType = f64>, Y: Ranged<ValueType = f64>>(
+    root: &Area<'_>,
+    chart: &mut ChartContext<'_, SVGBackend<'_>, Cartesian2d<X, Y>>,
+    labels: &mut Labels,
+    from: (f64, f64),
+    to: (f64, f64),
+) -> Result<(), Err> {
+    chart.draw_series([Rectangle::new([from, to], SHADE.filled())])?;
+    let at = chart.backend_coord(&(from.0.min(to.0), from.1.max(to.1)));
+    let s = "operating range";
+    let (w, h) = text_box(s, NOTE);
+    labels.block([at.0, at.1, at.0 + w + 12, at.1 + h + 6]);
+    text(
+        root,
+        s,
+        (at.0 + 6, at.1 + 3),
+        NOTE,
+        INK,
+        (HPos::Left, VPos::Top),
+    )
 }
 
 /// A boxed block of lines of text in a free corner of `labels`' bounds.

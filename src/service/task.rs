@@ -363,10 +363,12 @@ fn supported(out: &Output) -> Vec<&'static str> {
     if csv_supported(out) {
         v.push("text/csv");
     }
-    if !matches!(
-        out,
-        Output::Modal(_) | Output::Damping(_) | Output::Report(_)
-    ) {
+    let plotted = match out {
+        Output::Modal(m) => plot::modal_plotted(m),
+        Output::Damping(_) | Output::Report(_) => false,
+        _ => true,
+    };
+    if plotted {
         v.push("image/svg+xml");
     }
     if matches!(out, Output::Report(_)) {
@@ -398,6 +400,10 @@ fn svg(out: &Output) -> Result<Option<String>, ApiError> {
         Output::Static(s) => plot_audit::static_deflection(s),
         Output::Level1(l) => plot_audit::level1(l),
         Output::Frequency(f) => plot_audit::frequency_response(f),
+        Output::Modal(m) => match plot::modal(m) {
+            Ok(None) => return Ok(None),
+            r => r.map(Option::unwrap_or_default),
+        },
         _ => return Ok(None),
     };
     r.map(Some)

@@ -28,6 +28,13 @@ pub struct SweepRequest {
     /// this, rad/s (default: all). Stability always considers every pole.
     #[serde(default)]
     pub max_frequency: Option<f64>,
+    /// Campbell only: report the `modes` branches of lowest |frequency| at the first speed,
+    /// forward and backward counted together (ROSS's `frequencies`), 1 to 2n; with
+    /// `max_frequency` too, those of them below it. The sweep is bounded, and may be reduced,
+    /// as with `max_frequency` set to the highest of them. Stability ignores it.
+    #[serde(default)]
+    #[schema(minimum = 1)]
+    pub modes: Option<i64>,
     /// Campbell only, with `max_frequency`: solve on the lowest undamped modes where that at
     /// least halves the state and reproduces the full model's poles below `max_frequency` to
     /// 1e-6 relative at the fastest speed of the sweep (default true). The answer's

@@ -258,7 +258,7 @@ pub struct ResponseInput {
     pub node: i64,
     /// An angle (rad) or `"forward"`/`"backward"` (default 0: along x).
     #[serde(default)]
-    #[schema(value_type = Object)]
+    #[schema(value_type = Option<crate::service::openapi::ExcitationDirection>)]
     pub direction: Option<Value>,
 }
 

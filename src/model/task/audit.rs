@@ -11,6 +11,7 @@ use crate::model::api::{
 use crate::model::error::{Invalid, finite, non_negative, positive};
 use crate::model::limits::{Cost, Limits, Size};
 use crate::model::rotor::{BeamRotor, Rotor};
+use crate::model::speeds::{linear, logarithmic};
 use serde_json::Value;
 
 /// API 617's `B_c C` (3 x 9.55) with `P` in kW, `N` in rpm, `D_c`, `H_c` in mm: kN/mm.
@@ -19,8 +20,7 @@ const QA_CONSTANT: f64 = 3.0 * 9.55;
 /// Values of an automatic Level I range.
 const AUTO_COUNT: usize = 21;
 
-/// rad/s to rpm.
-pub(super) const RPM: f64 = 60.0 / (2.0 * std::f64::consts::PI);
+pub(super) use crate::model::speeds::RPM;
 
 /// The beam rotor of an analysis that replaces or ignores its supports' dynamics.
 pub(super) fn beam(
@@ -85,20 +85,11 @@ fn grid(
         return None;
     }
     let n = count as usize;
-    Some(
-        (0..n)
-            .map(|i| {
-                let t = i as f64 / (n - 1) as f64;
-                if i == n - 1 {
-                    b
-                } else if log {
-                    a * (b / a).powf(t)
-                } else {
-                    a + (b - a) * t
-                }
-            })
-            .collect(),
-    )
+    Some(if log {
+        logarithmic(a, b, n)
+    } else {
+        linear(a, b, n)
+    })
 }
 
 /// Cost of `solves` dense symmetric or complex solves of the model's size.

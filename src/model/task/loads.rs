@@ -87,11 +87,19 @@ impl TimeResponseRequest {
         let reported = requested_nodes.unwrap_or(nodes).max(1);
         let samples = samples.expect("validated");
         if samples.saturating_mul(reported) > limits.max_samples {
+            // A count beyond any limit is shown as the ratio it comes from, not as a
+            // saturated integer.
+            let count = if samples < usize::MAX {
+                samples.to_string()
+            } else {
+                format!("{:.3e}", self.duration / self.output_interval)
+            };
             bad.push(
                 "output_interval",
                 format!(
-                    "{samples} samples x {reported} nodes exceed the limit of {} values \
-                     (WHIRL_MAX_SAMPLES): use a longer interval or fewer nodes",
+                    "duration / output_interval gives {count} samples, x {reported} nodes: \
+                     more than the limit of {} values (WHIRL_MAX_SAMPLES); use a longer \
+                     interval, a shorter duration or fewer nodes",
                     limits.max_samples
                 ),
             );

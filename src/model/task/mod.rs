@@ -19,6 +19,7 @@ use super::supports::held_warning;
 use crate::analysis::audit::frequency::Excitation;
 use crate::damping::nonviscous::BranchSet;
 
+mod analyses;
 mod audit;
 mod loads;
 mod report;
@@ -182,6 +183,8 @@ pub enum TaskKind {
         speeds: SpeedGrid,
         /// Branches below this |frequency| (infinite: all).
         max_frequency: f64,
+        /// Only the lowest this many branches at the first speed.
+        modes: Option<usize>,
         /// Whether a checked modal reduction may be used.
         reduce: bool,
     },
@@ -348,190 +351,6 @@ fn sweep_cost(size: Size, speeds: usize, limits: &Limits, tracked: bool, values:
     let summaries = speeds as u64 * 64;
     Cost::new(size, threads, batch + 2, tracker + summaries, values)
         .with_work(size.eigen_work() * (speeds as f64 + 20.0))
-}
-
-impl ModalRequest {
-    pub fn parse(&self, limits: &Limits) -> Result<Task, Invalid> {
-        let mut bad = Invalid::default();
-        let speed = bad.check("speed", non_negative(self.speed));
-        let model = Model::parse(&self.rotor, &self.damping, limits, bad)?;
-        let size = model.size();
-        let n = size.dofs as u64;
-        let values = size.states() as u64 * 5 + 2 * n * model.rotor.node_count() as u64 * 3 + n;
-        let cost = Cost::new(size, 1, 1, 0, values).with_work(size.eigen_work());
-        let speed = speed.expect("validated");
-        Task {
-            warnings: model.warnings(speed, speed),
-            kind: TaskKind::Modal { model, speed },
-            cost,
-        }
-        .bounded(limits, "rotor")
-    }
-}
-
-impl SweepRequest {
-    fn parse_sweep(&self, limits: &Limits) -> Result<(Model, SpeedGrid), Invalid> {
-        let mut bad = Invalid::default();
-        if let Some(f) = self.max_frequency
-            && !(f.is_finite() && f > 0.0)
-        {
-            bad.push("max_frequency", format!("must be a number > 0 (got {f})"));
-        }
-        let grid = speeds(&self.speeds, limits, &mut bad);
-        let model = Model::parse(&self.rotor, &self.damping, limits, bad)?;
-        Ok((model, grid.expect("validated")))
-    }
-
-    /// `POST /v1/campbell`.
-    pub fn parse_campbell(&self, limits: &Limits) -> Result<Task, Invalid> {
-        let (model, speeds) = self.parse_sweep(limits)?;
-        let size = model.size();
-        let count = speeds.as_slice().len();
-        // At most 2n branches; with `max_frequency` fewer, known only after the solve.
-        let values = count as u64 * (1 + 4 * size.dofs as u64);
-        let cost = sweep_cost(size, count, limits, true, values);
-        let bounded = self.max_frequency.is_none();
-        let (lo, hi) = speeds.range();
-        let task = Task {
-            warnings: model.warnings(lo, hi),
-            kind: TaskKind::Campbell {
-                model,
-                speeds,
-                max_frequency: self.max_frequency.unwrap_or(f64::INFINITY),
-                reduce: self.modal_reduction.unwrap_or(true),
-            },
-            cost,
-        };
-        if bounded {
-            task.bounded(limits, "speeds")
-        } else {
-            Ok(task)
-        }
-    }
-
-    /// `POST /v1/stability`.
-    pub fn parse_stability(&self, limits: &Limits) -> Result<Task, Invalid> {
-        let (model, speeds) = self.parse_sweep(limits)?;
-        let size = model.size();
-        let count = speeds.as_slice().len();
-        let cost = sweep_cost(size, count, limits, false, 2 * count as u64 + 8);
-        let (lo, hi) = speeds.range();
-        Ok(Task {
-            warnings: model.warnings(lo, hi),
-            kind: TaskKind::Stability { model, speeds },
-            cost,
-        })
-    }
-}
-
-impl DampingMatricesRequest {
-    pub fn parse(&self, limits: &Limits) -> Result<Task, Invalid> {
-        let mut bad = Invalid::default();
-        let fit = self.fit.clone().unwrap_or_default();
-        let band = match fit.band {
-            Some([lo, hi]) if lo.is_finite() && hi.is_finite() && lo > 0.0 && hi > lo => {
-                Some([lo, hi])
-            }
-            Some(b) => {
-                bad.push(
-                    "fit.band",
-                    format!("must be [low, high] with 0 < low < high (got {b:?})"),
-                );
-                None
-            }
-            None => None,
-        };
-        let auto = match fit.max_deviation {
-            None => None,
-            Some(d) if d.is_finite() && d > 0.0 => Some(d),
-            Some(d) => {
-                bad.push(
-                    "fit.max_deviation",
-                    format!("must be a number > 0 (got {d})"),
-                );
-                None
-            }
-        };
-        if auto.is_some() {
-            match &self.damping {
-                DampingInput::Nonviscous(nv) => {
-                    for (side, b) in [("rotating", &nv.rotating), ("nonrotating", &nv.nonrotating)]
-                    {
-                        if let Some(b) = b
-                            && (b.branches.is_some() || b.nu.is_some())
-                        {
-                            bad.push(
-                                format!("damping.{side}"),
-                                "fit.max_deviation chooses the number of branches: omit \
-                                 `branches` and `nu`",
-                            );
-                        }
-                    }
-                    if fit.band.is_none() {
-                        bad.push("fit.band", "needed with fit.max_deviation");
-                    }
-                }
-                _ => bad.push("fit.max_deviation", "applies to the nonviscous model only"),
-            }
-        }
-        let speed = bad.check("speed", non_negative(self.speed.unwrap_or(0.0)));
-        let model = Model::parse(&self.rotor, &self.damping, limits, bad)?;
-        let speed = speed.expect("validated");
-        if matches!(
-            model.damping,
-            DampingModel::Viscous | DampingModel::Hysteretic
-        ) {
-            return Err(Invalid::one(
-                "damping.model",
-                format!(
-                    "`{}` adds no matrices: this endpoint returns the `equivalent` or \
-                     `nonviscous` model (hysteretic damping has no time-domain form; nonviscous \
-                     is its time-domain model)",
-                    model.damping.name()
-                ),
-            ));
-        }
-        let state_form = self.form == Some(MatrixForm::State);
-        // With an automatic fit the branches are chosen later (the fit refuses more states
-        // than the limit before building); the memory is bounded by the most it may choose.
-        let size = if auto.is_some() {
-            let most = BranchSet::MAX_BRANCHES;
-            let s = model.size_with(Some((most, most)));
-            let cap = limits.max_states.saturating_sub(2 * s.dofs);
-            Size {
-                internal: s.internal.min(cap),
-                ..s
-            }
-        } else {
-            model.size()
-        };
-        let q = (size.dofs + size.internal) as u64;
-        let s = size.states() as u64;
-        let mut values = 5 * q * q + q * 8;
-        if state_form {
-            values += 4 * s * s + s * size.dofs as u64;
-        }
-        let extra = 5 * 8 * q * q
-            + if state_form {
-                16 * s * size.dofs as u64
-            } else {
-                0
-            };
-        let cost = Cost::new(size, 0, 0, extra, values).with_work(size.eigen_work() / 10.0);
-        Task {
-            warnings: model.warnings(speed, speed),
-            kind: TaskKind::Damping {
-                model,
-                state_form,
-                band,
-                max_deviation: auto,
-                max_states: limits.max_states,
-                speed,
-            },
-            cost,
-        }
-        .bounded(limits, "damping")
-    }
 }
 
 /// A job's input, typed by its analysis: what `POST /v1/jobs` validates.

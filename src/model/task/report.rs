@@ -148,6 +148,7 @@ impl ReportRequest {
                 damping: damping.clone(),
                 speeds: speeds.clone(),
                 max_frequency,
+                modes: None,
                 modal_reduction: None,
             }
             .parse_campbell(limits)

@@ -63,22 +63,7 @@ pub fn critical_speed_map_with(
         let mut labels = Labels::new(area);
         if let Some([lo, hi]) = shade.filter(|s| ok(s[0]) && ok(s[1]) && s[1] > s[0]) {
             let (lo, hi) = (lo.max(f0), hi.min(f1));
-            chart.draw_series(std::iter::once(Rectangle::new(
-                [(k0, lo), (k1, hi)],
-                SHADE.filled(),
-            )))?;
-            let at = chart.backend_coord(&(k0, hi));
-            let s = "operating range";
-            let (w, h) = text_box(s, NOTE);
-            labels.block([at.0, at.1, at.0 + w + 12, at.1 + h + 6]);
-            text(
-                &root,
-                s,
-                (at.0 + 6, at.1 + 3),
-                NOTE,
-                INK,
-                (HPos::Left, VPos::Top),
-            )?;
+            operating_range(&root, &mut chart, &mut labels, (k0, lo), (k1, hi))?;
         }
         for (m, ys) in c.frequencies.iter().enumerate() {
             let color = PALETTE[m % PALETTE.len()];

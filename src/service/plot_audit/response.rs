@@ -273,7 +273,7 @@ fn peak_label(p: &crate::model::api::ResponsePeak) -> String {
     s
 }
 
-/// Orbit radius of each node against speed, each peak marked with its critical speed,
+/// Semi-major axis of each node's orbit (zero to peak) against speed, each peak marked with its critical speed,
 /// amplification factor and separation margin; the operating speeds `shade` shaded.
 pub fn unbalance_with(
     r: &UnbalanceResponseResponse,
@@ -305,7 +305,7 @@ pub fn unbalance_with(
         chart
             .configure_mesh()
             .x_desc("spin speed [rad/s]")
-            .y_desc(format!("orbit radius [{unit}]"))
+            .y_desc(format!("semi-major axis of the orbit, 0-pk [{unit}]"))
             .x_label_formatter(&|v| format!("{v:.0}"))
             .y_label_formatter(&lin_tick(a1))
             .label_style((FONT, TICK))
@@ -323,23 +323,8 @@ pub fn unbalance_with(
         let area = frame(&root, &chart)?;
         let mut labels = Labels::new(area);
         let mut entries = vec![];
-        if let Some([lo, hi]) = shade {
-            let (lo, hi) = (lo.max(x0), hi.min(x1));
-            if lo.is_finite() && hi.is_finite() && hi > lo {
-                chart.draw_series([Rectangle::new([(lo, 0.0), (hi, a1)], SHADE.filled())])?;
-                let at = chart.backend_coord(&(lo, a1));
-                let s = "operating range";
-                let (w, h) = text_box(s, NOTE);
-                labels.block([at.0, at.1, at.0 + w + 8, at.1 + h + 6]);
-                text(
-                    &root,
-                    s,
-                    (at.0 + 4, at.1 + 4),
-                    NOTE,
-                    INK,
-                    (HPos::Left, VPos::Top),
-                )?;
-            }
+        if let Some((lo, hi)) = clip(shade, x0, x1) {
+            operating_range(&root, &mut chart, &mut labels, (lo, 0.0), (hi, a1))?;
         }
         for (k, n) in r.nodes.iter().enumerate() {
             let color = PALETTE[k % PALETTE.len()];

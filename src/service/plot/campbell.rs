@@ -1,0 +1,351 @@
+//! The Campbell diagram (|frequency| against speed, the 1x and 2x lines, critical speeds)
+//! over its decay-rate panel, and the stability plot (largest decay rate against speed).
+
+use super::svg::{Anchor, Axis, INK, Panel, Stroke, Svg, extent, sig, spread, text_width};
+use super::{COLOURS, Err, RPM, SHADE_HEX, clip, runs, speed_label};
+use crate::model::api::{Branch, CampbellResponse, StabilityResponse, Whirl};
+
+const W: f64 = 960.0;
+const LEFT: f64 = 84.0;
+const RIGHT: f64 = W - 64.0;
+const RED: &str = "#C81414";
+const SYNC: &str = "#555555";
+
+/// Colour of mode `mode` (1-based).
+fn colour(mode: usize) -> &'static str {
+    COLOURS[(mode.max(1) - 1) % COLOURS.len()]
+}
+
+/// Dashes of a whirl direction: forward solid, backward dashed, internal dotted.
+fn dash(w: Whirl) -> Option<&'static str> {
+    match w {
+        Whirl::Forward => None,
+        Whirl::Backward => Some("9 5"),
+        Whirl::Internal => Some("2 4"),
+    }
+}
+
+fn tag(b: &Branch) -> String {
+    let w = match b.whirl {
+        Whirl::Forward => "F",
+        Whirl::Backward => "B",
+        Whirl::Internal => "I",
+    };
+    format!("{}{w}", b.mode)
+}
+
+/// The y range of decay rates: zero included, padded. A peak far above the stable part
+/// (beyond the threshold) would flatten it: then the range stops at `1.5 |lowest|` and the
+/// third value is the clipped maximum.
+pub fn decay_range(values: impl IntoIterator<Item = f64>) -> (f64, f64, Option<f64>) {
+    let Some((lo, hi)) = extent(values) else {
+        return (-1.0, 1.0, None);
+    };
+    let (lo, hi) = (lo.min(0.0), hi.max(0.0));
+    let (top, clipped) = if lo < 0.0 && hi > 3.0 * -lo {
+        (1.5 * -lo, Some(hi))
+    } else {
+        (hi, None)
+    };
+    let span = (top - lo).max(1e-12);
+    (lo - 0.06 * span, top + 0.06 * span, clipped)
+}
+
+/// Campbell diagram (|frequency| against speed) over the decay-rate plot.
+pub fn campbell(c: &CampbellResponse) -> Result<String, Err> {
+    campbell_with(c, None)
+}
+
+/// Mode labels at the ends of the branches, spread apart, right of `p`'s last point.
+fn end_labels(svg: &mut Svg, p: &Panel, ends: Vec<((f64, f64), String, &str)>) {
+    let ends: Vec<_> = ends.into_iter().filter(|e| p.contains(e.0)).collect();
+    let px: Vec<(f64, f64)> = ends.iter().map(|e| p.px(e.0)).collect();
+    let ys: Vec<f64> = px.iter().map(|q| q.1 + 4.0).collect();
+    let ys = spread(&ys, 13.0, p.rect[1] + 8.0, p.rect[3] + 4.0);
+    for ((q, y), (_, s, color)) in px.iter().zip(ys).zip(&ends) {
+        svg.text((q.0 + 5.0, y), s, 12.0, Anchor::Start, color);
+    }
+}
+
+/// Branches on `p`, the values of each by `values`; returns the label at each branch's end.
+fn branches<'a>(
+    svg: &mut Svg,
+    p: &Panel,
+    c: &'a CampbellResponse,
+    values: impl Fn(&Branch) -> Vec<Option<f64>>,
+) -> Vec<((f64, f64), String, &'a str)> {
+    let mut ends = vec![];
+    for b in &c.branches {
+        let color = colour(b.mode);
+        let stroke = Stroke {
+            dash: dash(b.whirl),
+            ..Stroke::solid(color, 2.0)
+        };
+        let rs = runs(&c.speeds, &values(b));
+        for run in &rs {
+            svg.path(p, run, stroke, &format!("branch mode-{}", tag(b)));
+        }
+        if let Some(last) = rs.last().and_then(|r| r.last()) {
+            ends.push((*last, tag(b), color));
+        }
+    }
+    ends
+}
+
+/// [`campbell`] with the operating speeds `shade = [min, max]` (rad/s) shaded.
+pub fn campbell_with(c: &CampbellResponse, shade: Option<[f64; 2]>) -> Result<String, Err> {
+    let mut svg = Svg::new(W as u32, 960);
+    let (x0, x1) = extent(c.speeds.iter().copied()).unwrap_or((0.0, 1.0));
+    let x = Axis::lin(x0, x1);
+    let freqs = c
+        .branches
+        .iter()
+        .flat_map(|b| b.frequency.iter().flatten().map(|f| f.abs()));
+    let f_hi = extent(freqs).map_or(1.0, |e| e.1.max(0.0));
+    let f_hi = if f_hi > 0.0 { f_hi * 1.05 } else { 1.0 };
+    let rates = c
+        .branches
+        .iter()
+        .flat_map(|b| b.decay_rate.iter().flatten().copied());
+    let (d_lo, d_hi, clipped) = decay_range(rates);
+    let shade = clip(shade, x.lo, x.hi);
+
+    svg.caption((W / 2.0, 24.0), "Campbell diagram");
+    let top = svg.panel([LEFT, 84.0, RIGHT, 460.0], x, Axis::lin(0.0, f_hi));
+    if let Some((lo, hi)) = shade {
+        band(&mut svg, &top, (lo, hi));
+    }
+    svg.axes(&top, "spin speed [rad/s]", "whirl frequency |ω| [rad/s]");
+    svg.top_axis(&top, RPM, "spin speed [rpm]");
+    sync_lines(&mut svg, &top);
+    let ends = branches(&mut svg, &top, c, |b| {
+        b.frequency.iter().map(|f| f.map(f64::abs)).collect()
+    });
+    end_labels(&mut svg, &top, ends);
+    if let Some(t) = c.threshold.filter(|t| x.lo <= *t && *t <= x.hi) {
+        svg.path(
+            &top,
+            &[(t, 0.0), (t, f_hi)],
+            Stroke::solid(RED, 2.0),
+            "threshold",
+        );
+    }
+    criticals(&mut svg, &top, &c.critical_speeds);
+    let mut key: Vec<(String, &str, Option<&str>)> = vec![
+        ("forward whirl".into(), INK, None),
+        ("backward whirl".into(), INK, Some("9 5")),
+        ("1x, 2x (synchronous)".into(), SYNC, Some("1 0")),
+    ];
+    if c.branches.iter().any(|b| b.whirl == Whirl::Internal) {
+        key.push(("internal".into(), INK, Some("2 4")));
+    }
+    if !c.critical_speeds.is_empty() {
+        key.push(("critical speed".into(), INK, Some("dot")));
+    }
+    if shade.is_some() {
+        key.push(("operating range".into(), SHADE_HEX, Some("shade")));
+    }
+    if let Some(t) = c.threshold {
+        key.push((format!("threshold {}", speed_label(t)), RED, None));
+    }
+    let rows = svg.key_rows(((LEFT + RIGHT) / 2.0, 514.0), RIGHT - LEFT, &key);
+    let dy = rows - 17.0;
+
+    svg.caption((W / 2.0, 560.0 + dy), "Decay-rate plot");
+    let bottom = svg.panel(
+        [LEFT, 578.0 + dy, RIGHT, 890.0 + dy],
+        x,
+        Axis::lin(d_lo, d_hi),
+    );
+    if let Some((lo, hi)) = shade {
+        band(&mut svg, &bottom, (lo, hi));
+    }
+    svg.axes(
+        &bottom,
+        "spin speed [rad/s]",
+        "decay rate σ [1/s]  (> 0 unstable)",
+    );
+    svg.path(
+        &bottom,
+        &[(x.lo, 0.0), (x.hi, 0.0)],
+        Stroke::solid(INK, 1.0),
+        "zero",
+    );
+    for &w in &c.critical_speeds {
+        let st = Stroke::dashed(SYNC, 1.0, "4 4");
+        svg.path(&bottom, &[(w, d_lo), (w, d_hi)], st, "critical");
+    }
+    let ends = branches(&mut svg, &bottom, c, |b| b.decay_rate.clone());
+    end_labels(&mut svg, &bottom, ends);
+    if let Some(t) = c.threshold.filter(|t| x.lo <= *t && *t <= x.hi) {
+        svg.path(
+            &bottom,
+            &[(t, d_lo), (t, d_hi)],
+            Stroke::solid(RED, 2.0),
+            "threshold",
+        );
+        let (px, py) = bottom.px((t, d_hi));
+        svg.text(
+            (px - 6.0, py + 16.0),
+            &format!("threshold {}", speed_label(t)),
+            12.0,
+            Anchor::End,
+            RED,
+        );
+    }
+    if let Some(m) = clipped {
+        clipped_note(&mut svg, &bottom, m, 6.0);
+    }
+    Ok(svg.finish())
+}
+
+/// The operating range shaded over the whole height of `p`.
+fn band(svg: &mut Svg, p: &Panel, (lo, hi): (f64, f64)) {
+    let (a, _) = p.px((lo, p.y.lo));
+    let (b, _) = p.px((hi, p.y.lo));
+    svg.rect_px([a, p.rect[1], b, p.rect[3]], SHADE_HEX, 0.22, None);
+    svg.text(
+        (b - 4.0, p.rect[3] - 6.0),
+        "operating range",
+        11.0,
+        Anchor::End,
+        INK,
+    );
+}
+
+/// Note of a clipped decay-rate axis, `above` pixels over `p`, right-aligned.
+fn clipped_note(svg: &mut Svg, p: &Panel, max: f64, above: f64) {
+    let s = format!(
+        "axis clipped at σ = {} 1/s (largest σ: {} 1/s)",
+        sig(p.y.hi, 2),
+        sig(max, 3)
+    );
+    svg.text((p.rect[2], p.rect[1] - above), &s, 12.0, Anchor::End, RED);
+}
+
+/// The lines ω = Ω and ω = 2Ω, clipped to `p` analytically (they start at the origin).
+fn sync_lines(svg: &mut Svg, p: &Panel) {
+    for (k, name) in [(1.0, "1x"), (2.0, "2x")] {
+        let t0 = p.x.lo.max(p.y.lo / k);
+        let t1 = p.x.hi.min(p.y.hi / k);
+        if t1 <= t0 {
+            continue;
+        }
+        let st = if k == 1.0 {
+            Stroke::solid(SYNC, 1.5)
+        } else {
+            Stroke {
+                opacity: 0.7,
+                ..Stroke::dashed(SYNC, 1.0, "2 3")
+            }
+        };
+        svg.path(
+            p,
+            &[(t0, k * t0), (t1, k * t1)],
+            st,
+            &format!("sync-{name}"),
+        );
+        let (px, py) = p.px((t1, k * t1));
+        let (dx, dy) = if t1 >= p.x.hi {
+            (-4.0, -6.0)
+        } else {
+            (6.0, 12.0)
+        };
+        let anchor = if t1 >= p.x.hi {
+            Anchor::End
+        } else {
+            Anchor::Start
+        };
+        svg.text((px + dx, py + dy), name, 12.0, anchor, SYNC);
+    }
+}
+
+/// A dot at each critical speed on the 1x line, labelled in rad/s and rpm.
+fn criticals(svg: &mut Svg, p: &Panel, speeds: &[f64]) {
+    let pts: Vec<(f64, f64)> = speeds
+        .iter()
+        .filter(|w| w.is_finite() && p.contains((**w, **w)))
+        .map(|w| p.px((*w, *w)))
+        .collect();
+    let ys: Vec<f64> = pts.iter().map(|q| q.1 + 16.0).collect();
+    let ys = spread(&ys, 15.0, p.rect[1] + 12.0, p.rect[3] - 4.0);
+    for ((q, y), w) in pts.iter().zip(ys).zip(
+        speeds
+            .iter()
+            .filter(|w| w.is_finite() && p.contains((**w, **w))),
+    ) {
+        svg.circle_px(*q, 5.0, INK, "#FFFFFF");
+        let s = speed_label(*w);
+        let right = q.0 + 10.0 + text_width(&s, 12.0) < p.rect[2];
+        let (x, anchor) = if right {
+            (q.0 + 8.0, Anchor::Start)
+        } else {
+            (q.0 - 8.0, Anchor::End)
+        };
+        svg.text((x, y), &s, 12.0, anchor, INK);
+    }
+}
+
+/// Largest decay rate against speed, the threshold marked.
+pub fn stability(s: &StabilityResponse) -> Result<String, Err> {
+    stability_with(s, None)
+}
+
+/// [`stability`] with the operating speeds `shade = [min, max]` (rad/s) shaded.
+pub fn stability_with(s: &StabilityResponse, shade: Option<[f64; 2]>) -> Result<String, Err> {
+    let mut svg = Svg::new(W as u32, 540);
+    let (x0, x1) = extent(s.speeds.iter().copied()).unwrap_or((0.0, 1.0));
+    let x = Axis::lin(x0, x1);
+    let (y0, y1, clipped) = decay_range(s.max_decay_rate.iter().copied());
+    svg.caption((W / 2.0, 24.0), "Stability: largest decay rate");
+    let p = svg.panel([LEFT, 84.0, RIGHT, 476.0], x, Axis::lin(y0, y1));
+    let shade = clip(shade, x.lo, x.hi);
+    if let Some(b) = shade {
+        band(&mut svg, &p, b);
+    }
+    svg.axes(
+        &p,
+        "spin speed [rad/s]",
+        "largest decay rate σ [1/s]  (> 0 unstable)",
+    );
+    svg.top_axis(&p, RPM, "spin speed [rpm]");
+    svg.path(
+        &p,
+        &[(x.lo, 0.0), (x.hi, 0.0)],
+        Stroke::solid(INK, 1.0),
+        "zero",
+    );
+    let pts: Vec<(f64, f64)> = s
+        .speeds
+        .iter()
+        .copied()
+        .zip(s.max_decay_rate.iter().copied())
+        .collect();
+    svg.path(&p, &pts, Stroke::solid(COLOURS[0], 2.0), "decay");
+    let mut key: Vec<(String, &str, Option<&str>)> = vec![];
+    if let Some(t) = s.threshold {
+        svg.path(
+            &p,
+            &[(t, y0), (t, y1)],
+            Stroke::solid(RED, 2.0),
+            "threshold",
+        );
+        let mut name = format!("threshold {}", speed_label(t));
+        if let (Some(m), Some(w)) = (s.mode, s.whirl) {
+            let w = if w == Whirl::Backward { "B" } else { "F" };
+            name += &format!(": mode {m}{w}");
+            if let Some(f) = s.frequency {
+                name += &format!(" at ω = {f:.1} rad/s");
+            }
+        }
+        key.push((name, RED, None));
+    }
+    if shade.is_some() {
+        key.push(("operating range".into(), SHADE_HEX, Some("shade")));
+    }
+    svg.key_in(&p, &key);
+    if let Some(m) = clipped {
+        clipped_note(&mut svg, &p, m, 44.0);
+    }
+    Ok(svg.finish())
+}
