@@ -6,8 +6,12 @@
 
 #[path = "common/mod.rs"]
 mod common;
+#[path = "report_sample.rs"]
+mod sample;
 
 use std::collections::BTreeMap;
+
+use sample::elements;
 
 use whirl::model::api::*;
 use whirl::service::plot;
@@ -21,23 +25,6 @@ async fn answer<T: serde::de::DeserializeOwned>(uri: &str, file: &str) -> T {
     let (status, v) = common::post_json(uri, &example(file)).await;
     assert_eq!(status, 200, "{uri}: {v}");
     serde_json::from_value(v).unwrap()
-}
-
-/// Attributes of every `<tag ...>` element.
-fn elements(svg: &str, tag: &str) -> Vec<BTreeMap<String, String>> {
-    let open = format!("<{tag} ");
-    let mut out = vec![];
-    for part in svg.split(&open).skip(1) {
-        let head = &part[..part.find('>').unwrap()];
-        let mut attrs = BTreeMap::new();
-        for kv in head.split("\" ") {
-            if let Some((k, v)) = kv.trim().split_once("=\"") {
-                attrs.insert(k.to_string(), v.trim_end_matches(['"', '/']).to_string());
-            }
-        }
-        out.push(attrs);
-    }
-    out
 }
 
 /// Text contents of every `<text>` element.
