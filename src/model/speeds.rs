@@ -1,10 +1,10 @@
 //! Validated spin-speed grids.
 
 use super::api::SpeedsInput;
+use super::error::{Invalid, finite};
 
 /// rad/s to rpm: `60 / (2 pi)`.
 pub const RPM: f64 = 60.0 / (2.0 * std::f64::consts::PI);
-use super::error::{Invalid, finite};
 
 /// Largest integer a double holds exactly, and then every smaller one.
 const EXACT: f64 = 9_007_199_254_740_992.0;
