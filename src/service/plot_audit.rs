@@ -11,6 +11,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
+use super::plot::axis::length_unit;
 use super::plot::{PALETTE, RPM, SHADE, clip, range, runs};
 use crate::model::api::{
     CriticalSpeedMapResponse, FrequencyResponseResponse, Level1Response, StaticResponse,
@@ -315,15 +316,6 @@ fn frame<X: Ranged, Y: Ranged>(
         FRAME.stroke_width(1),
     ))?;
     Ok(r)
-}
-
-/// A length unit for values up to `max` m: `(factor, name)`.
-fn length_unit(max: f64) -> (f64, &'static str) {
-    if max < 1e-3 {
-        (1e6, "µm")
-    } else {
-        (1e3, "mm")
-    }
 }
 
 /// A cross-coupling unit for values up to `max` N/m: `(divisor, name)`.
