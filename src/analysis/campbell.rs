@@ -135,16 +135,8 @@ impl CampbellResult {
     /// Keeps the `n` branches of lowest |frequency| at their first defined speed (mode numbers
     /// unchanged), and the critical speeds of those.
     pub fn keep_lowest(&mut self, n: usize) {
-        let first = |b: &Branch| {
-            let i = b.poles.iter().position(Option::is_some).unwrap_or(0);
-            (i, b.poles[i].map_or(f64::INFINITY, |s| s.im.abs()))
-        };
         let mut order: Vec<usize> = (0..self.branches.len()).collect();
-        order.sort_by(|&a, &b| {
-            let (ia, fa) = first(&self.branches[a]);
-            let (ib, fb) = first(&self.branches[b]);
-            ia.cmp(&ib).then(fa.total_cmp(&fb))
-        });
+        order.sort_by(|&a, &b| by_start(&self.branches[a], &self.branches[b]));
         let mut keep = vec![false; self.branches.len()];
         for &i in order.iter().take(n) {
             keep[i] = true;
@@ -171,22 +163,25 @@ impl CampbellResult {
     }
 }
 
+/// Branches by where they start: their first defined speed, then |frequency| there (the
+/// order modes are numbered in, and the lowest kept).
+fn by_start(a: &Branch, b: &Branch) -> std::cmp::Ordering {
+    let start = |b: &Branch| {
+        let i = b.poles.iter().position(Option::is_some).unwrap_or(0);
+        (i, b.poles[i].map_or(0.0, |s| s.im.abs()))
+    };
+    let ((ia, fa), (ib, fb)) = (start(a), start(b));
+    ia.cmp(&ib).then(fa.total_cmp(&fb))
+}
+
 /// Modes numbered per whirl by |frequency| at the branch's first defined speed; branches
 /// ordered by mode, forward before backward.
 fn number_modes(branches: &mut [Branch]) {
-    let key = |b: &Branch| {
-        let first = b.poles.iter().position(|p| p.is_some()).unwrap_or(0);
-        (first, b.poles[first].map_or(0.0, |s| s.im.abs()))
-    };
     for whirl in [Whirl::Forward, Whirl::Backward] {
         let mut idx: Vec<usize> = (0..branches.len())
             .filter(|&i| branches[i].whirl == whirl)
             .collect();
-        idx.sort_by(|&a, &b| {
-            let (fa, wa) = key(&branches[a]);
-            let (fb, wb) = key(&branches[b]);
-            fa.cmp(&fb).then(wa.total_cmp(&wb))
-        });
+        idx.sort_by(|&a, &b| by_start(&branches[a], &branches[b]));
         for (k, i) in idx.into_iter().enumerate() {
             branches[i].mode = k + 1;
         }
