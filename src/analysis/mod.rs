@@ -5,6 +5,7 @@ pub mod audit;
 pub mod campbell;
 pub mod control;
 pub mod modal;
+pub mod nearest;
 pub mod poles;
 pub mod reduction;
 pub mod run;

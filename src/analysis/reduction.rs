@@ -19,11 +19,12 @@
 //! [`ModalBasis::augmented`]: crate::fem::modal::ModalBasis::augmented
 
 use super::AnalysisError;
+use super::nearest::Wanted;
 use crate::damping::{DampedModel, ModelKind};
 use crate::fem::modal::ModalBasis;
 use crate::linalg::{self, LinalgError, c64};
 use crate::model::damping::DampingModel;
-use crate::system::RotorSystem;
+use crate::system::{Layout, RotorSystem};
 
 /// Largest relative eigenvalue change allowed by the reduction of a sweep, at the check speed.
 pub const TOLERANCE: f64 = 1e-6;
@@ -163,7 +164,7 @@ pub fn reduce(
     }
     // The full model's poles (the one large solve) and the first basis at once.
     let (exact, mut next) = rayon::join(
-        || compared_at(full, checked_speed, criterion),
+        || full_compared(full, checked_speed, bound, criterion),
         || candidate(m),
     );
     let Some(first) = next.take() else {
@@ -233,13 +234,35 @@ fn compared_at(
 ) -> Result<Vec<c64>, LinalgError> {
     match (&model.kind, criterion) {
         (ModelKind::Linear(m), Criterion::Response(_)) if m.p() > 0 => {
-            Ok(super::poles::poles_at(model, speed)?
-                .rotor
-                .iter()
-                .map(|p| p.s)
-                .collect())
+            let rotor = super::poles::poles_at(model, speed)?.rotor;
+            let mut out: Vec<c64> = rotor.iter().map(|p| p.s).collect();
+            // Doubled, each pole was kept once of its mirror pair `(s, conj s)`; the full
+            // model's are compared as found (both), so both sides carry both.
+            if model.layout == Layout::Doubled {
+                out.extend(rotor.iter().map(|p| p.s.conj()));
+            }
+            Ok(out)
         }
         _ => eigenvalues_at(model, speed),
+    }
+}
+
+/// The full model's poles as [`compared_at`] gives them, those in a disc covering the box
+/// `|Re s|, |Im s| <= bound` (all the check reads: a pole outside it is no nearer to one inside
+/// than the disc's edge), by shift-invert Arnoldi where that is cheaper than the dense solve.
+fn full_compared(
+    model: &DampedModel,
+    speed: f64,
+    bound: f64,
+    criterion: Criterion,
+) -> Result<Vec<c64>, LinalgError> {
+    let wanted = match (&model.kind, criterion) {
+        (ModelKind::Linear(m), Criterion::Response(_)) if m.p() > 0 => Wanted::Rotor,
+        _ => Wanted::All,
+    };
+    match super::nearest::poles_within(model, speed, 1.5 * bound, wanted)? {
+        Some(poles) => Ok(poles),
+        None => compared_at(model, speed, criterion),
     }
 }
 

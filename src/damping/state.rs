@@ -316,9 +316,86 @@ impl StateModel {
         }
     }
 
+    /// `A(speed)` entry `(i, j)` without forming `A`.
+    fn entry(&self, speed: f64, i: usize, j: usize) -> c64 {
+        let (k, t) = self.segment(speed);
+        let at = |k: usize| self.a0[k][(i, j)] + self.a1[k][(i, j)] * speed;
+        if t == 0.0 {
+            at(k)
+        } else {
+            at(k) * (1.0 - t) + at(k + 1) * t
+        }
+    }
+
+    /// `(A(speed) - sigma I)^-1` by the structure of `A` (see [`ShiftInvert`]).
+    pub fn shift_invert(&self, speed: f64, sigma: c64) -> ShiftInvert {
+        let (n, p) = (self.n, self.p());
+        let e = |i: usize, j: usize| self.entry(speed, i, j);
+        let avv = CMat::from_fn(n, n, |i, j| {
+            e(i, j) - if i == j { sigma } else { c64::new(0.0, 0.0) }
+        });
+        let avy = CMat::from_fn(n, p, |i, j| e(i, 2 * n + j));
+        let ayx = CMat::from_fn(p, n, |i, j| e(2 * n + i, n + j));
+        let dyy: Vec<c64> = (0..p)
+            .map(|j| c64::new(1.0, 0.0) / (e(2 * n + j, 2 * n + j) - sigma))
+            .collect();
+        // S = sigma (A_vv - sigma) + A_vx - A_vy diag(dyy) A_yx.
+        let scaled = CMat::from_fn(p, n, |i, j| ayx[(i, j)] * dyy[i]);
+        let coupled = &avy * &scaled;
+        let s = CMat::from_fn(n, n, |i, j| {
+            avv[(i, j)] * sigma + e(i, n + j) - coupled[(i, j)]
+        });
+        ShiftInvert {
+            n,
+            sigma,
+            avv,
+            avy,
+            ayx,
+            dyy,
+            lu: linalg::ComplexLu::new(&s),
+        }
+    }
+
     /// The branches (internal coordinates).
     pub fn branches(&self) -> &Branches {
         &self.branches
+    }
+}
+
+/// `(A - sigma I)^-1` for `A = [[A_vv, A_vx, A_vy], [I, 0, 0], [0, A_yx, A_yy]]` (`A_yy`
+/// diagonal): from `b = [b1, b2, b3]`, `v = b2 + sigma x` and
+/// `y = (A_yy - sigma)^-1 (b3 - A_yx x)` leave one `n x n` system,
+/// `(sigma (A_vv - sigma) + A_vx - A_vy (A_yy - sigma)^-1 A_yx) x
+/// = b1 - (A_vv - sigma) b2 - A_vy (A_yy - sigma)^-1 b3`, factored once.
+pub struct ShiftInvert {
+    n: usize,
+    sigma: c64,
+    /// `A_vv - sigma I`.
+    avv: CMat,
+    avy: CMat,
+    ayx: CMat,
+    /// `1 / (A_yy - sigma)`.
+    dyy: Vec<c64>,
+    lu: linalg::ComplexLu,
+}
+
+impl ShiftInvert {
+    /// `(A - sigma I)^-1 b`.
+    pub fn solve(&self, b: &[c64]) -> Vec<c64> {
+        let n = self.n;
+        let (b1, rest) = b.split_at(n);
+        let (b2, b3) = rest.split_at(n);
+        let w: Vec<c64> = b3.iter().zip(&self.dyy).map(|(b, d)| b * d).collect();
+        let mut x = b1.to_vec();
+        add_matvec(&mut x, &self.avv, b2, -1.0);
+        add_matvec(&mut x, &self.avy, &w, -1.0);
+        self.lu.solve_in_place(&mut x);
+        let mut out: Vec<c64> = b2.iter().zip(&x).map(|(b, x)| b + self.sigma * x).collect();
+        out.extend_from_slice(&x);
+        let mut y = b3.to_vec();
+        add_matvec(&mut y, &self.ayx, &x, -1.0);
+        out.extend(y.iter().zip(&self.dyy).map(|(y, d)| y * d));
+        out
     }
 }
 

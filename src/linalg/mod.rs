@@ -9,6 +9,8 @@
 //! faer runs sequentially here (`Par::Seq`, set once at startup): the service parallelises over
 //! spin speeds instead, which is faster on few cores than parallelising one small problem.
 
+pub mod arnoldi;
+
 use faer::linalg::solvers::Solve;
 use faer::{Par, Side};
 
