@@ -3,6 +3,9 @@
 //! compressor unreduced, stiff heavily damped and soft lightly damped cross-coupled bearings,
 //! 12 and 100 elements, under every damping model and at several speeds.
 
+mod common;
+
+use common::stepped_rotor as rotor;
 use serde_json::{Value, json};
 use whirl::analysis::nearest::{Wanted, poles_within};
 use whirl::analysis::poles::poles_at;
@@ -21,31 +24,6 @@ fn system(rotor: Value) -> RotorSystem {
 fn damping(model: &str, n: usize) -> DampingModel {
     let j: DampingInput = serde_json::from_value(json!({ "model": model })).unwrap();
     DampingModel::parse(&j, Some(n)).unwrap()
-}
-
-/// A stepped 1.2 m shaft of `elements` elements with two disks, on two bearings.
-fn rotor(elements: usize, bearing: Value, loss: f64) -> Value {
-    let e = elements / 3;
-    let at = |node: usize| {
-        let mut b = bearing.clone();
-        b["node"] = json!(node);
-        b
-    };
-    json!({
-        "type": "beam",
-        "materials": {"steel": {"young_modulus": 2.11e11, "density": 7810.0, "poisson_ratio": 0.3,
-                                "loss_factor": loss}},
-        "shaft": [
-            {"length": 0.35, "outer_diameter": 0.06, "inner_diameter": 0.0, "material": "steel", "elements": e},
-            {"length": 0.5, "outer_diameter": 0.08, "inner_diameter": 0.03, "material": "steel", "elements": elements - 2 * e},
-            {"length": 0.35, "outer_diameter": 0.06, "inner_diameter": 0.0, "material": "steel", "elements": e}
-        ],
-        "disks": [
-            {"node": e + 2, "mass": 25.0, "polar_inertia": 0.35, "transverse_inertia": 0.18},
-            {"node": elements - e - 3, "mass": 12.0, "polar_inertia": 0.15, "transverse_inertia": 0.08}
-        ],
-        "supports": [at(1), at(elements - 1)]
-    })
 }
 
 fn compressor() -> RotorSystem {
@@ -117,6 +95,37 @@ fn nearest(s: c64, set: &[c64]) -> f64 {
         / s.norm()
 }
 
+/// The largest relative distance, both ways, between the Arnoldi poles and a reference's in
+/// the disc (away from its edge), asserted within `tolerance`; and how many were compared.
+fn same_sets(
+    found: &[c64],
+    reference: &[c64],
+    radius: f64,
+    tolerance: f64,
+    label: &str,
+) -> (f64, usize) {
+    let mut worst = 0.0f64;
+    let mut count = 0;
+    for &s in reference.iter().filter(|s| s.norm() <= 0.98 * radius) {
+        let e = nearest(s, found);
+        assert!(
+            e <= tolerance,
+            "{label}: reference pole {s} missed ({e:.1e})"
+        );
+        worst = worst.max(e);
+        count += 1;
+    }
+    for &s in found {
+        let e = nearest(s, reference);
+        assert!(
+            e <= tolerance,
+            "{label}: {s} is not a reference pole ({e:.1e})"
+        );
+        worst = worst.max(e);
+    }
+    (worst, count)
+}
+
 /// Both ways, within `tolerance` relative: every dense pole in the disc (away from its edge)
 /// has an Arnoldi one, and every Arnoldi pole is a dense one; and for every eigenvalue of a
 /// model without internal coordinates, the same against [`dense_inverse`].
@@ -148,55 +157,15 @@ fn check(
             let t0 = std::time::Instant::now();
             let reference = dense(&full, speed, w);
             let t2 = t0.elapsed().as_secs_f64();
-            let mut worst = 0.0f64;
-            for &s in reference.iter().filter(|s| s.norm() <= 0.98 * radius) {
-                let e = nearest(s, &found);
-                if e > tolerance {
-                    let mut near: Vec<_> = reference
-                        .iter()
-                        .filter(|t| (*t - s).norm() < 1e-3 * s.norm())
-                        .collect();
-                    near.sort_by(|a, b| a.re.total_cmp(&b.re));
-                    let f: Vec<_> = found
-                        .iter()
-                        .filter(|t| (*t - s).norm() < 1e-3 * s.norm())
-                        .collect();
-                    println!("dense near: {near:?}\nfound near: {f:?}");
+            let label = format!("{name} {model} {w:?} at {speed}");
+            let (worst, count) = same_sets(&found, &reference, radius, tolerance, &label);
+            compared += count;
+            let inverse_worst = match (w, dense_inverse(&full, speed)) {
+                (Wanted::All, Some(inverse)) => {
+                    same_sets(&found, &inverse, radius, tolerance, &format!("{label}, T")).0
                 }
-                assert!(
-                    e <= tolerance,
-                    "{name} {model} {w:?} at {speed}: dense {s} missed ({e:.1e})"
-                );
-                worst = worst.max(e);
-                compared += 1;
-            }
-            for &s in &found {
-                let e = nearest(s, &reference);
-                assert!(
-                    e <= tolerance,
-                    "{name} {model} {w:?} at {speed}: {s} not a pole ({e:.1e})"
-                );
-                worst = worst.max(e);
-            }
-            let mut inverse_worst = 0.0f64;
-            if let (Wanted::All, Some(inverse)) = (w, dense_inverse(&full, speed)) {
-                for &s in inverse.iter().filter(|s| s.norm() <= 0.98 * radius) {
-                    let e = nearest(s, &found);
-                    assert!(
-                        e <= tolerance,
-                        "{name} {model} at {speed}: {s} missed ({e:.1e}) against T"
-                    );
-                    inverse_worst = inverse_worst.max(e);
-                }
-                for &s in &found {
-                    let e = nearest(s, &inverse);
-                    assert!(
-                        e <= tolerance,
-                        "{name} {model} at {speed}: {s} not a pole of T ({e:.1e})"
-                    );
-                    inverse_worst = inverse_worst.max(e);
-                }
-            }
+                _ => 0.0,
+            };
             println!(
                 "{name} {model} {w:?} at {speed}: {} poles of {} states, worst {worst:.1e} \
                  ({inverse_worst:.1e} against the dense T); \

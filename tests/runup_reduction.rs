@@ -3,6 +3,9 @@
 //! lightly damped bearings, isotropic and cross-coupled anisotropic, with material loss
 //! (so that the nonviscous model has rotating branches) and without.
 
+mod common;
+
+use common::stepped_rotor as rotor;
 use serde_json::{Value, json};
 use whirl::analysis::control::Control;
 use whirl::analysis::time::{SpeedLaw, TimeResult, TimeSpec, reduced, time_response};
@@ -22,35 +25,6 @@ fn system(rotor: Value) -> RotorSystem {
 fn damping(model: &str) -> DampingModel {
     let j: DampingInput = serde_json::from_value(json!({ "model": model })).unwrap();
     DampingModel::parse(&j, None).unwrap()
-}
-
-/// A stepped 1.2 m shaft of `elements` elements with two disks, on two bearings.
-fn rotor(elements: usize, bearing: Value, loss: f64) -> Value {
-    let e = elements / 3;
-    json!({
-        "type": "beam",
-        "materials": {"steel": {"young_modulus": 2.11e11, "density": 7810.0, "poisson_ratio": 0.3,
-                                "loss_factor": loss}},
-        "shaft": [
-            {"length": 0.35, "outer_diameter": 0.06, "inner_diameter": 0.0, "material": "steel", "elements": e},
-            {"length": 0.5, "outer_diameter": 0.08, "inner_diameter": 0.03, "material": "steel", "elements": elements - 2 * e},
-            {"length": 0.35, "outer_diameter": 0.06, "inner_diameter": 0.0, "material": "steel", "elements": e}
-        ],
-        "disks": [
-            {"node": e + 2, "mass": 25.0, "polar_inertia": 0.35, "transverse_inertia": 0.18},
-            {"node": elements - e - 3, "mass": 12.0, "polar_inertia": 0.15, "transverse_inertia": 0.08}
-        ],
-        "supports": [
-            dict_with(&bearing, "node", json!(1)),
-            dict_with(&bearing, "node", json!(elements - 1))
-        ]
-    })
-}
-
-fn dict_with(v: &Value, key: &str, value: Value) -> Value {
-    let mut v = v.clone();
-    v[key] = value;
-    v
 }
 
 /// The largest radial amplitude and its time.

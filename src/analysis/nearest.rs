@@ -91,7 +91,6 @@ fn within(
                     || m.rotor_energy_fraction(&z[n..2 * n], &z[2 * n..]) >= ROTOR_FRACTION
             })
             .map(|(s, _)| *s)
-            .filter(|s| (s - sigma).norm() <= radius)
             .collect(),
     ))
 }

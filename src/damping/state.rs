@@ -245,17 +245,9 @@ impl StateModel {
 
     /// The state matrix at spin speed `speed`.
     pub fn at(&self, speed: f64) -> CMat {
-        let (k, t) = self.segment(speed);
+        let segment = self.segment(speed);
         let size = self.size();
-        if t == 0.0 {
-            let (a0, a1) = (&self.a0[k], &self.a1[k]);
-            return CMat::from_fn(size, size, |i, j| a0[(i, j)] + a1[(i, j)] * speed);
-        }
-        let (a0, a1, b0, b1) = (&self.a0[k], &self.a1[k], &self.a0[k + 1], &self.a1[k + 1]);
-        let s = 1.0 - t;
-        CMat::from_fn(size, size, |i, j| {
-            (a0[(i, j)] + a1[(i, j)] * speed) * s + (b0[(i, j)] + b1[(i, j)] * speed) * t
-        })
+        CMat::from_fn(size, size, |i, j| self.entry(segment, speed, i, j))
     }
 
     /// `A(speed) x` without forming `A`.
@@ -316,9 +308,8 @@ impl StateModel {
         }
     }
 
-    /// `A(speed)` entry `(i, j)` without forming `A`.
-    fn entry(&self, speed: f64, i: usize, j: usize) -> c64 {
-        let (k, t) = self.segment(speed);
+    /// Entry `(i, j)` of `A(speed)` on the table's `segment` at `speed`.
+    fn entry(&self, (k, t): (usize, f64), speed: f64, i: usize, j: usize) -> c64 {
         let at = |k: usize| self.a0[k][(i, j)] + self.a1[k][(i, j)] * speed;
         if t == 0.0 {
             at(k)
@@ -330,7 +321,8 @@ impl StateModel {
     /// `(A(speed) - sigma I)^-1` by the structure of `A` (see [`ShiftInvert`]).
     pub fn shift_invert(&self, speed: f64, sigma: c64) -> ShiftInvert {
         let (n, p) = (self.n, self.p());
-        let e = |i: usize, j: usize| self.entry(speed, i, j);
+        let segment = self.segment(speed);
+        let e = |i: usize, j: usize| self.entry(segment, speed, i, j);
         let avv = CMat::from_fn(n, n, |i, j| {
             e(i, j) - if i == j { sigma } else { c64::new(0.0, 0.0) }
         });

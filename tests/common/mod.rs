@@ -52,3 +52,30 @@ pub async fn post_as(uri: &str, body: &serde_json::Value, accept: &str) -> (u16,
         .to_vec();
     (status, ctype, bytes)
 }
+
+/// A stepped 1.2 m shaft of `elements` elements with two disks, on two bearings `bearing`
+/// (the rotor built for nothing in particular of `runup_reduction.rs` and `nearest.rs`).
+#[allow(dead_code)]
+pub fn stepped_rotor(elements: usize, bearing: serde_json::Value, loss: f64) -> serde_json::Value {
+    let e = elements / 3;
+    let at = |node: usize| {
+        let mut b = bearing.clone();
+        b["node"] = serde_json::json!(node);
+        b
+    };
+    serde_json::json!({
+        "type": "beam",
+        "materials": {"steel": {"young_modulus": 2.11e11, "density": 7810.0, "poisson_ratio": 0.3,
+                                "loss_factor": loss}},
+        "shaft": [
+            {"length": 0.35, "outer_diameter": 0.06, "inner_diameter": 0.0, "material": "steel", "elements": e},
+            {"length": 0.5, "outer_diameter": 0.08, "inner_diameter": 0.03, "material": "steel", "elements": elements - 2 * e},
+            {"length": 0.35, "outer_diameter": 0.06, "inner_diameter": 0.0, "material": "steel", "elements": e}
+        ],
+        "disks": [
+            {"node": e + 2, "mass": 25.0, "polar_inertia": 0.35, "transverse_inertia": 0.18},
+            {"node": elements - e - 3, "mass": 12.0, "polar_inertia": 0.15, "transverse_inertia": 0.08}
+        ],
+        "supports": [at(1), at(elements - 1)]
+    })
+}
