@@ -214,7 +214,7 @@ fn main() {
     }
 
     // (c) Compressor, 1 s of time response (unbalance at mid-span, output every 0.1 ms), at
-    // constant speed (exact) and during a run-up (TR-BDF2; minutes: `runup` runs it alone).
+    // constant speed (exact) and during a run-up (on the checked reduction; `runup` runs it).
     let unbalance = Unbalance {
         node: 45,
         amount: 1e-3,
@@ -284,10 +284,11 @@ fn main() {
                 )
             });
             println!(
-                "(c) compressor ({} dof) run-up 0 to 1500 rad/s in 1 s, {name}: {:.3} s ({} TR-BDF2 steps; reduction: {info})",
+                "(c) compressor ({} dof) run-up 0 to 1500 rad/s in 1 s, {name}: {:.3} s ({} {:?} steps; reduction: {info})",
                 system.n(),
                 t.as_secs_f64(),
                 r.steps,
+                r.method,
             );
         }
     }

@@ -321,6 +321,7 @@ pub fn time_response(r: &TimeResult) -> api::TimeResponseResponse {
         method: match r.method {
             Method::Exact => "exact",
             Method::Implicit => "implicit",
+            Method::Exponential => "exponential",
         }
         .into(),
         steps: r.steps,

@@ -55,16 +55,7 @@ pub fn solve(
     let size = state.size();
     // One right-hand side per load: unit force in its direction; unit unbalance at its phase,
     // once per direction of whirl it drives (two in doubled coordinates).
-    let mut cols: Vec<Vec<c64>> = (0..spec.forces.len())
-        .map(|k| forcing.force_column(k))
-        .collect();
-    let mut whirls: Vec<(usize, usize, f64)> = vec![];
-    for u in 0..spec.unbalances.len() {
-        for (col, sense) in forcing.unbalance_columns(u) {
-            whirls.push((u, cols.len(), sense));
-            cols.push(col);
-        }
-    }
+    let super::LoadColumns { cols, whirls } = forcing.columns();
     let rhs = CMat::from_fn(size, cols.len(), |i, j| cols[j][i]);
     let g = linalg::solve_complex(&e.vectors, &rhs)?;
     // A nearly defective A makes V^-1 meaningless: fall back to integrating.

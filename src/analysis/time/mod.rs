@@ -13,6 +13,7 @@
 //! The hysteretic model is defined for harmonic motion only and has no time response.
 
 pub mod exact;
+pub mod exponential;
 pub mod implicit;
 pub mod reduced;
 
@@ -28,6 +29,8 @@ use crate::system::{Layout, Realized};
 pub enum Method {
     Exact,
     Implicit,
+    /// ETD-RK4 on a small state ([`exponential`]).
+    Exponential,
 }
 
 /// Complex displacement `x + i y` of each reported node at the output times.
@@ -238,6 +241,46 @@ impl<'a> Forcing<'a> {
         out
     }
 
+    /// The loads as fixed columns and coefficients, `b(t) = sum_j c_j(t) B_j`: the unit force
+    /// `k` in its direction, then each unbalance's whirls ([`Self::unbalance_columns`]).
+    pub fn columns(&self) -> LoadColumns {
+        let mut cols: Vec<Vec<c64>> = (0..self.spec.forces.len())
+            .map(|k| self.force_column(k))
+            .collect();
+        let mut whirls = vec![];
+        for u in 0..self.spec.unbalances.len() {
+            for (col, sense) in self.unbalance_columns(u) {
+                whirls.push((u, cols.len(), sense));
+                cols.push(col);
+            }
+        }
+        LoadColumns { cols, whirls }
+    }
+
+    /// `c_j(t)` of [`Self::columns`] (`left`: the limit just before `t`), into `c`.
+    pub fn coefficients(&self, columns: &LoadColumns, t: f64, left: bool, c: &mut [c64]) {
+        for (ck, force) in c.iter_mut().zip(&self.spec.forces) {
+            let v = if left {
+                force.history.left_value(t)
+            } else {
+                force.history.value(t)
+            };
+            *ck = c64::new(v, 0.0);
+        }
+        let sp = &self.spec.speed;
+        let (w, a, angle) = (sp.omega(t), sp.accel(t, left), sp.angle(t));
+        for &(u, col, sense) in &columns.whirls {
+            let ub = &self.spec.unbalances[u];
+            let on = if left { t > ub.from } else { t >= ub.from };
+            // m e (Omega^2 - i Omega') e^{i theta}, conjugated on the `conj r` rows.
+            c[col] = if on {
+                c64::new(w * w, -sense * a) * c64::from_polar(ub.amount, sense * angle)
+            } else {
+                c64::new(0.0, 0.0)
+            };
+        }
+    }
+
     /// Times where a load or the speed law changes value or slope.
     pub fn breakpoints(&self) -> Vec<f64> {
         let mut t: Vec<f64> = vec![];
@@ -253,6 +296,13 @@ impl<'a> Forcing<'a> {
         t.dedup();
         t
     }
+}
+
+/// The loads of a [`Forcing`] as columns: `cols[j]` is `B_j`; `whirls` holds
+/// `(unbalance, column, sense)`, the unbalance driving whirl at `sense Omega` through that column.
+pub struct LoadColumns {
+    pub cols: Vec<Vec<c64>>,
+    pub whirls: Vec<(usize, usize, f64)>,
 }
 
 /// The translation degree of freedom of a node (validated to exist).
@@ -312,6 +362,26 @@ pub fn solve_in(
         c.slow.as_deref(),
         control,
     )?)
+}
+
+/// A varying speed on a small state in the coordinates `c`: the exponential integrator, or
+/// TR-BDF2 where a stage's state matrix is too near defective to diagonalise.
+pub fn solve_exponential(
+    c: &Coordinates,
+    model: &DampedModel,
+    spec: &TimeSpec,
+    control: &Control,
+) -> Result<TimeResult, TimeError> {
+    let ModelKind::Linear(state) = &model.kind else {
+        return Err(TimeError::Hysteretic);
+    };
+    control.expect(spec.output_times().len() as u64);
+    let forcing = Forcing::new(c, spec, state.size())?;
+    let out: Vec<Vec<(usize, f64)>> = spec.nodes.iter().map(|&n| c.observe(n)).collect();
+    match exponential::solve(state, &forcing, spec, &out, control) {
+        Err(TimeError::Linalg(_)) => solve_in(c, model, spec, true, control),
+        r => finite(r?),
+    }
 }
 
 /// The output of observation `w` from a state `z` (displacements at `n..2n`).

@@ -64,8 +64,9 @@ pub struct TimeResponseRequest {
     /// Nodes to report (default: all nodes with a translation).
     #[serde(default)]
     pub nodes: Option<Vec<i64>>,
-    /// Relative tolerance of the implicit integrator (varying speed), in [1e-12, 1e-2];
-    /// default 1e-6.
+    /// Relative tolerance of the integrators (varying speed), in [1e-12, 1e-2]; default
+    /// 1e-6. On a modal reduction (the exponential integrator) it bounds the error relative
+    /// to the response's peak; on the full model (TR-BDF2) it controls the local error.
     #[serde(default)]
     pub tolerance: Option<f64>,
     /// Varying speed: integrate on the lowest undamped modes and the static corrections of
@@ -93,9 +94,10 @@ pub struct TimeResponseResponse {
     pub time: Vec<f64>,
     pub nodes: Vec<NodeHistory>,
     /// `exact` (constant speed: modal superposition, exact for piecewise-linear forces and
-    /// unbalance) or `implicit` (TR-BDF2, L-stable, error-controlled).
+    /// unbalance), `exponential` (varying speed on a modal reduction: ETD-RK4, every pole
+    /// integrated exactly) or `implicit` (TR-BDF2, L-stable, error-controlled).
     pub method: String,
-    /// Integration steps taken (implicit) or 0.
+    /// Integration steps taken (exponential, implicit) or 0.
     pub steps: usize,
     /// Size of the state.
     pub states: usize,

@@ -1,0 +1,201 @@
+//! The exponential integrator (`analysis::time::exponential`) against what we trust: the
+//! closed-form modal solution at constant speed, and TR-BDF2 at a tight tolerance along speed
+//! profiles, on the full models of small rotors: Example 1 under the paper's nonviscous
+//! model (internal poles at -3e4 1/s), and a shaft on fluid-film bearings tabulated against
+//! speed (anisotropic and cross-coupled: doubled coordinates; the run-up crosses the table's
+//! speeds), with a blade loss and a shock in the same run.
+
+use serde_json::Value;
+use whirl::analysis::control::Control;
+use whirl::analysis::time::{
+    Coordinates, Method, SpeedLaw, TimeResult, TimeSpec, solve_exponential, solve_in,
+};
+use whirl::damping::DampedModel;
+use whirl::damping::nonviscous::BranchSet;
+use whirl::model::api::RotorInput;
+use whirl::model::damping::{DampingModel, NonviscousSpec};
+use whirl::model::error::Invalid;
+use whirl::model::loads::{Force, Pwl, Unbalance};
+use whirl::model::rotor::{Limits, Rotor};
+use whirl::system::RotorSystem;
+
+fn example(name: &str) -> Value {
+    let path = format!("{}/examples/{name}", env!("CARGO_MANIFEST_DIR"));
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+fn system(rotor: Value) -> RotorSystem {
+    let input: RotorInput = serde_json::from_value(rotor).unwrap();
+    RotorSystem::assemble(&Rotor::parse(&input, &Limits::default()).unwrap()).unwrap()
+}
+
+fn paper_nvd() -> DampingModel {
+    let rot = BranchSet::new(3, 10.0, vec![1.0; 3]).unwrap();
+    let nonrot = BranchSet::new(3, 10.0, rot.gamma().iter().map(|g| 1.0 / g).collect()).unwrap();
+    DampingModel::Nonviscous(NonviscousSpec {
+        rotating: rot,
+        nonrotating: nonrot,
+        modes: None,
+    })
+}
+
+fn pwl(points: &[[f64; 2]]) -> Pwl {
+    Pwl::parse(points, "p", true, &mut Invalid::default()).unwrap()
+}
+
+/// The exponential integrator at the default tolerance against itself at 1e-10 and TR-BDF2
+/// at `tight`, on the full model: the largest differences over the whole response, relative
+/// to its peak.
+fn against_references(
+    s: &RotorSystem,
+    model: &DampingModel,
+    spec: &TimeSpec,
+    tight: f64,
+) -> (f64, f64, TimeResult) {
+    let m = DampedModel::build(s, model).unwrap();
+    let c = Coordinates {
+        physical: s,
+        solved: s,
+        basis: None,
+        slow: None,
+    };
+    let control = Control::default();
+    let e = solve_exponential(&c, &m, spec, &control).unwrap();
+    assert_eq!(e.method, Method::Exponential);
+    let at = |tolerance: f64| TimeSpec {
+        tolerance,
+        ..spec.clone()
+    };
+    let fine = solve_exponential(&c, &m, &at(1e-10), &control).unwrap();
+    let implicit = solve_in(&c, &m, &at(tight), true, &control).unwrap();
+    assert_eq!(implicit.method, Method::Implicit);
+    (deviation(&e, &fine), deviation(&fine, &implicit), e)
+}
+
+fn deviation(a: &TimeResult, b: &TimeResult) -> f64 {
+    let (mut dev, mut peak) = (0.0f64, 0.0f64);
+    for ((_, x), (_, y)) in a.nodes.iter().zip(&b.nodes) {
+        assert_eq!(x.len(), y.len());
+        for (p, q) in x.iter().zip(y) {
+            dev = dev.max((p - q).norm());
+            peak = peak.max(q.norm());
+        }
+    }
+    dev / peak
+}
+
+fn unbalance(node: usize, amount: f64, from: f64) -> Unbalance {
+    Unbalance {
+        node,
+        amount,
+        phase: 0.3,
+        from,
+    }
+}
+
+fn spec(speed: SpeedLaw, unbalances: Vec<Unbalance>, forces: Vec<Force>, t: f64) -> TimeSpec {
+    TimeSpec {
+        speed,
+        forces,
+        unbalances,
+        duration: t,
+        output_interval: 1e-3,
+        nodes: vec![1, 2],
+        tolerance: 1e-6,
+        max_steps: 5_000_000,
+        reduce: false,
+    }
+}
+
+#[test]
+fn at_constant_speed_it_is_the_closed_form() {
+    let s = system(example("example1-nvd.modal.json")["rotor"].clone());
+    let m = DampedModel::build(&s, &paper_nvd()).unwrap();
+    let c = Coordinates {
+        physical: &s,
+        solved: &s,
+        basis: None,
+        slow: None,
+    };
+    let shock = Force {
+        node: 1,
+        direction: 0.5,
+        history: pwl(&[[0.0, 0.0], [0.01, 100.0], [0.02, 0.0]]),
+    };
+    let sp = spec(
+        SpeedLaw::Constant(800.0),
+        vec![unbalance(2, 1e-3, 0.0), unbalance(1, 2e-3, 0.0305)],
+        vec![shock],
+        0.2,
+    );
+    let control = Control::default();
+    let exact = solve_in(&c, &m, &sp, false, &control).unwrap();
+    assert_eq!(exact.method, Method::Exact);
+    // The exponential integrator itself (solve_exponential would see a constant speed only
+    // through its stages; it is called on any speed law).
+    // Fourth order: the error follows the tolerance, which bounds it on the peak.
+    for tolerance in [1e-6, 1e-9] {
+        let e = solve_exponential(
+            &c,
+            &m,
+            &TimeSpec {
+                tolerance,
+                ..sp.clone()
+            },
+            &control,
+        )
+        .unwrap();
+        assert_eq!(e.method, Method::Exponential);
+        let dev = deviation(&e, &exact);
+        eprintln!(
+            "constant speed, tolerance {tolerance:e}: {} states, {} steps, {dev:.1e} of the peak \
+             from the closed form",
+            e.states, e.steps
+        );
+        assert!(dev < 2.0 * tolerance, "{dev:e}");
+    }
+}
+
+#[test]
+fn a_nonviscous_run_up_through_resonance_matches_tr_bdf2() {
+    let s = system(example("example1-nvd.modal.json")["rotor"].clone());
+    let law = SpeedLaw::Profile(pwl(&[[0.0, 250.0], [0.5, 250.0], [1.5, 450.0]]));
+    let sp = spec(law, vec![unbalance(1, 1e-4, 0.0)], vec![], 1.5);
+    let (dev, implicit, e) = against_references(&s, &paper_nvd(), &sp, 1e-9);
+    eprintln!(
+        "Example 1 nonviscous run-up: {} states, {} steps, {dev:.1e} of the peak from itself at \
+         1e-10, which is {implicit:.1e} from TR-BDF2 at 1e-9",
+        e.states, e.steps
+    );
+    assert!(dev < 2e-6, "{dev:e}");
+    assert!(implicit < 1e-4, "{implicit:e}");
+}
+
+#[test]
+fn a_run_up_on_tabulated_fluid_film_bearings_with_a_blade_loss_and_a_shock_matches_tr_bdf2() {
+    let s = system(example("fluid-film.unbalance-response.json")["rotor"].clone());
+    // 100 -> 1800 rad/s in 0.3 s: across the table's 200, 600, 1000 and 1500 rad/s.
+    let law = SpeedLaw::Profile(pwl(&[[0.0, 100.0], [0.3, 1800.0], [0.4, 1800.0]]));
+    let shock = Force {
+        node: 5,
+        direction: 1.0,
+        history: pwl(&[[0.0, 0.0], [0.1, 0.0], [0.1005, 500.0], [0.101, 0.0]]),
+    };
+    let sp = TimeSpec {
+        nodes: vec![0, 5, 10],
+        ..spec(
+            law,
+            vec![unbalance(5, 1e-4, 0.0), unbalance(5, 2e-3, 0.25)],
+            vec![shock],
+            0.4,
+        )
+    };
+    let (dev, implicit, e) = against_references(&s, &DampingModel::Viscous, &sp, 1e-8);
+    eprintln!(
+        "fluid film run-up: {} states, {} steps, {dev:.1e} of the peak from itself at 1e-10, \
+         which is {implicit:.1e} from TR-BDF2 at 1e-8",
+        e.states, e.steps
+    );
+    assert!(dev < 2e-6, "{dev:e}");
+    assert!(implicit < 1e-4, "{implicit:e}");
+}
