@@ -2,7 +2,8 @@
 //! really holds at its peak, measured with a counting allocator. The estimate must be an upper
 //! bound (the budget relies on it) and not a wild one (it would refuse work for nothing).
 //!
-//! One test in this binary: the allocator counts the whole process.
+//! One test at a time in this binary (the second is ignored by default): the allocator counts
+//! the whole process.
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -96,16 +97,14 @@ fn parse(kind: &str, body: Value, limits: &Limits) -> Task {
     .unwrap()
 }
 
-#[test]
-fn every_estimate_bounds_the_measured_peak_heap() {
-    let limits = Limits::default();
+/// The service's pool, with faer's per-thread scratch allocated on every thread first (twice
+/// the L3 cache, reserved and touched only as far as a product needs), so that what is
+/// measured is the analysis's own heap.
+fn warm_pool(limits: &Limits) -> rayon::ThreadPool {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(limits.threads)
         .build()
         .unwrap();
-    // faer's matrix products keep a scratch buffer per thread (twice the L3 cache, reserved
-    // and touched only as far as a product needs): allocate it on every thread first, so that
-    // what is measured is the analysis's own heap.
     let warm = || {
         let a = whirl::linalg::CMat::from_fn(64, 64, |i, j| {
             whirl::linalg::c64::new((i * 3 + j) as f64, (i + j * 5) as f64 % 7.0)
@@ -114,6 +113,56 @@ fn every_estimate_bounds_the_measured_peak_heap() {
     };
     warm();
     pool.broadcast(|_| warm());
+    pool
+}
+
+/// Runs one case as the service would and returns (measured, estimated) peak bytes, after
+/// asserting that the estimate bounds the measure and is not more than 8x it.
+fn check(
+    pool: &rayon::ThreadPool,
+    limits: &Limits,
+    name: &str,
+    kind: &str,
+    body: Value,
+) -> (f64, f64) {
+    let task = parse(kind, body, limits);
+    let estimate = task.cost.peak_bytes as f64;
+    let measured = measure(|| {
+        pool.install(|| {
+            let out = execute(&task, &Control::default(), limits.max_response_bytes).unwrap();
+            let body = render(&out, &[Format::Json]).unwrap();
+            assert!(!body.body.is_empty());
+        })
+    }) as f64;
+    println!(
+        "{name:<40} {:>12.2} {:>12.2} {:>7.2}",
+        mb(measured),
+        mb(estimate),
+        estimate / measured
+    );
+    assert!(
+        measured <= estimate,
+        "{name}: measured {} MB above the estimate {} MB",
+        mb(measured),
+        mb(estimate)
+    );
+    assert!(
+        estimate <= 8.0 * measured.max(1e6),
+        "{name}: estimate {} MB is more than 8x the measured {} MB",
+        mb(estimate),
+        mb(measured)
+    );
+    (measured, estimate)
+}
+
+fn mb(x: f64) -> f64 {
+    x / (1u64 << 20) as f64
+}
+
+#[test]
+fn every_estimate_bounds_the_measured_peak_heap() {
+    let limits = Limits::default();
+    let pool = warm_pool(&limits);
     let compressor = example("compressor-nvd.campbell.json");
     let mut cases: Vec<(&str, &str, Value)> = vec![];
     let mut c = unreduced(compressor.clone());
@@ -200,33 +249,30 @@ fn every_estimate_bounds_the_measured_peak_heap() {
         "case", "measured MB", "estimate MB", "ratio"
     );
     for (name, kind, body) in cases {
-        let task = parse(kind, body, &limits);
-        let estimate = task.cost.peak_bytes as f64;
-        let measured = measure(|| {
-            pool.install(|| {
-                let out = execute(&task, &Control::default(), limits.max_response_bytes).unwrap();
-                let body = render(&out, &[Format::Json]).unwrap();
-                assert!(!body.body.is_empty());
-            })
-        }) as f64;
-        let mb = |x: f64| x / (1u64 << 20) as f64;
-        println!(
-            "{name:<40} {:>12.2} {:>12.2} {:>7.2}",
-            mb(measured),
-            mb(estimate),
-            estimate / measured
-        );
-        assert!(
-            measured <= estimate,
-            "{name}: measured {} MB above the estimate {} MB",
-            mb(measured),
-            mb(estimate)
-        );
-        assert!(
-            estimate <= 8.0 * measured.max(1e6),
-            "{name}: estimate {} MB is more than 8x the measured {} MB",
-            mb(estimate),
-            mb(measured)
-        );
+        check(&pool, &limits, name, kind, body);
     }
+}
+
+/// A sweep holds speeds x branches, not speeds x states x dofs: the pole sets in flight are a
+/// bounded batch. Measured 66.4 MB (estimate 151 MB) for 2000 speeds of the unreduced
+/// compressor, 404 states, every branch. About 9 minutes on 2 cores (tracking 404 branches by
+/// their shapes at every speed dominates), so not in the default run:
+/// `cargo test --release --test memory -- --ignored`.
+#[test]
+#[ignore = "about 9 minutes on 2 cores"]
+fn a_2000_speed_sweep_of_a_404_state_rotor_stays_under_200_mb() {
+    let limits = Limits::default();
+    let pool = warm_pool(&limits);
+    let mut c = unreduced(example("compressor-nvd.campbell.json"));
+    c["damping"] = json!({"model": "viscous"});
+    c["speeds"] = json!({"start": 0, "stop": 1500, "count": 2000});
+    c["modal_reduction"] = json!(false);
+    let (measured, _) = check(
+        &pool,
+        &limits,
+        "campbell, full compressor, 2000 speeds",
+        "campbell",
+        c,
+    );
+    assert!(mb(measured) < 200.0, "{} MB", mb(measured));
 }
