@@ -5,15 +5,17 @@
 //! speed (anisotropic and cross-coupled: doubled coordinates; the run-up crosses the table's
 //! speeds), with a blade loss and a shock in the same run.
 
+mod common;
+
+use common::paper_nvd;
 use serde_json::Value;
 use whirl::analysis::control::Control;
 use whirl::analysis::time::{
     Coordinates, Method, SpeedLaw, TimeResult, TimeSpec, solve_exponential, solve_in,
 };
 use whirl::damping::DampedModel;
-use whirl::damping::nonviscous::BranchSet;
 use whirl::model::api::RotorInput;
-use whirl::model::damping::{DampingModel, NonviscousSpec};
+use whirl::model::damping::DampingModel;
 use whirl::model::error::Invalid;
 use whirl::model::loads::{Force, Pwl, Unbalance};
 use whirl::model::rotor::{Limits, Rotor};
@@ -27,16 +29,6 @@ fn example(name: &str) -> Value {
 fn system(rotor: Value) -> RotorSystem {
     let input: RotorInput = serde_json::from_value(rotor).unwrap();
     RotorSystem::assemble(&Rotor::parse(&input, &Limits::default()).unwrap()).unwrap()
-}
-
-fn paper_nvd() -> DampingModel {
-    let rot = BranchSet::new(3, 10.0, vec![1.0; 3]).unwrap();
-    let nonrot = BranchSet::new(3, 10.0, rot.gamma().iter().map(|g| 1.0 / g).collect()).unwrap();
-    DampingModel::Nonviscous(NonviscousSpec {
-        rotating: rot,
-        nonrotating: nonrot,
-        modes: None,
-    })
 }
 
 fn pwl(points: &[[f64; 2]]) -> Pwl {

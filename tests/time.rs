@@ -2,17 +2,19 @@
 //! paper's shock, run-ups through the first critical speed, blade loss, and the steady
 //! unbalance response against the closed form.
 
+mod common;
+
+use common::paper_nvd;
 use serde_json::{Value, json};
 use whirl::analysis::control::Control;
 use whirl::analysis::poles::{Whirl, poles_at};
 use whirl::analysis::time::{Method, SpeedLaw, TimeResult, TimeSpec, time_response};
 use whirl::analysis::unbalance::{SteadyUnbalance, unbalance_response};
 use whirl::damping::DampedModel;
-use whirl::damping::nonviscous::BranchSet;
 use whirl::fem::modal::ModalBasis;
 use whirl::linalg::c64;
 use whirl::model::api::RotorInput;
-use whirl::model::damping::{DampingModel, NonviscousSpec};
+use whirl::model::damping::DampingModel;
 use whirl::model::error::Invalid;
 use whirl::model::loads::{Force, Pwl, Unbalance};
 use whirl::model::rotor::{Limits, Rotor};
@@ -30,16 +32,6 @@ fn example1() -> RotorSystem {
     );
     let v: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
     system(v["rotor"].clone())
-}
-
-fn paper_nvd() -> DampingModel {
-    let rot = BranchSet::new(3, 10.0, vec![1.0; 3]).unwrap();
-    let nonrot = BranchSet::new(3, 10.0, rot.gamma().iter().map(|g| 1.0 / g).collect()).unwrap();
-    DampingModel::Nonviscous(NonviscousSpec {
-        rotating: rot,
-        nonrotating: nonrot,
-        modes: None,
-    })
 }
 
 fn pwl(points: &[[f64; 2]]) -> Pwl {

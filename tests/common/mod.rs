@@ -79,3 +79,16 @@ pub fn stepped_rotor(elements: usize, bearing: serde_json::Value, loss: f64) -> 
         "supports": [at(1), at(elements - 1)]
     })
 }
+
+/// The paper's nonviscous model of Example 1: 3 rotating branches over a decade at 10 rad/s,
+/// unit weights, and 3 nonrotating ones weighted by the reciprocals of the rotating gammas.
+pub fn paper_nvd() -> whirl::model::damping::DampingModel {
+    use whirl::damping::nonviscous::BranchSet;
+    let rot = BranchSet::new(3, 10.0, vec![1.0; 3]).unwrap();
+    let nonrot = BranchSet::new(3, 10.0, rot.gamma().iter().map(|g| 1.0 / g).collect()).unwrap();
+    whirl::model::damping::DampingModel::Nonviscous(whirl::model::damping::NonviscousSpec {
+        rotating: rot,
+        nonrotating: nonrot,
+        modes: None,
+    })
+}

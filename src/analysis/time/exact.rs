@@ -13,7 +13,7 @@ use rayon::prelude::*;
 
 use crate::analysis::control::{Cancelled, Control};
 use crate::damping::state::StateModel;
-use crate::linalg::{self, CMat, LinalgError, c64};
+use crate::linalg::{self, CMat, c64};
 
 /// `(e^z - 1)/z`, accurate near 0.
 pub fn phi1(z: c64) -> c64 {
@@ -58,18 +58,7 @@ pub fn solve(
     let super::LoadColumns { cols, whirls } = forcing.columns();
     let rhs = CMat::from_fn(size, cols.len(), |i, j| cols[j][i]);
     let g = linalg::solve_complex(&e.vectors, &rhs)?;
-    // A nearly defective A makes V^-1 meaningless: fall back to integrating.
-    let back = &e.vectors * &g;
-    let (mut res, mut scale) = (0.0f64, 0.0f64);
-    for i in 0..size {
-        for j in 0..cols.len() {
-            res = res.max((back[(i, j)] - rhs[(i, j)]).norm());
-            scale = scale.max(rhs[(i, j)].norm());
-        }
-    }
-    if res > 1e-9 * scale.max(f64::MIN_POSITIVE) {
-        return Err(TimeError::Linalg(LinalgError::NonFinite));
-    }
+    super::check_modal(&e.vectors, &g, &rhs)?;
     // Every force as steps and ramps: (force index, t_k, jump, slope change).
     let pieces: Vec<(usize, f64, f64, f64)> = spec
         .forces
@@ -82,15 +71,7 @@ pub fn solve(
                 .map(move |(tk, jump, dslope)| (fi, tk, jump, dslope))
         })
         .collect();
-    let n = state.n();
-    let vrows: Vec<Vec<c64>> = out
-        .iter()
-        .map(|w| {
-            (0..size)
-                .map(|k| w.iter().map(|&(d, a)| e.vectors[(n + d, k)] * a).sum())
-                .collect()
-        })
-        .collect();
+    let vrows = super::output_rows(&e.vectors, out, state.n());
     let times = spec.output_times();
     let chunks: Vec<(usize, usize)> = (0..times.len())
         .step_by(CHUNK)

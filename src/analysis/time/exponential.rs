@@ -27,7 +27,7 @@
 use super::{Forcing, Method, TimeError, TimeResult, TimeSpec};
 use crate::analysis::control::Control;
 use crate::damping::state::StateModel;
-use crate::linalg::{self, CMat, LinalgError, c64};
+use crate::linalg::{self, CMat, c64};
 
 /// `phi_k(z) = sum_j z^j / (j + k)!` for k = 1, 2, 3 (`phi_0 = e^z`).
 fn phis(z: c64) -> [c64; 3] {
@@ -192,27 +192,8 @@ impl Stage {
         let vinv = linalg::solve_complex(&e.vectors, &identity)?;
         let b = CMat::from_fn(size, columns.len(), |i, j| columns[j][i]);
         let g = &vinv * &b;
-        // A nearly defective `A_k` makes `V^-1` meaningless: the caller integrates otherwise.
-        let back = &e.vectors * &g;
-        let (mut res, mut scale) = (0.0f64, 0.0f64);
-        for i in 0..size {
-            for j in 0..columns.len() {
-                res = res.max((back[(i, j)] - b[(i, j)]).norm());
-                scale = scale.max(b[(i, j)].norm());
-            }
-        }
-        if res.is_nan() || res > 1e-9 * scale {
-            return Err(TimeError::Linalg(LinalgError::NonFinite));
-        }
-        let n = state.n();
-        let rows = out
-            .iter()
-            .map(|w| {
-                (0..size)
-                    .map(|k| w.iter().map(|&(d, a)| e.vectors[(n + d, k)] * a).sum())
-                    .collect()
-            })
-            .collect();
+        super::check_modal(&e.vectors, &g, &b)?;
+        let rows = super::output_rows(&e.vectors, out, state.n());
         Ok(Stage {
             omega,
             f1: Coupling::new(&vinv, &f1, &e.vectors),

@@ -384,6 +384,35 @@ pub fn solve_exponential(
     }
 }
 
+/// Errs where `V g = b` does not hold to 1e-9 of `b`: a state matrix too near defective for
+/// its modal coordinates `g = V^-1 b` to mean anything (the caller integrates instead).
+fn check_modal(v: &CMat, g: &CMat, b: &CMat) -> Result<(), TimeError> {
+    let back = v * g;
+    let (mut res, mut scale) = (0.0f64, 0.0f64);
+    for i in 0..b.nrows() {
+        for j in 0..b.ncols() {
+            res = res.max((back[(i, j)] - b[(i, j)]).norm());
+            scale = scale.max(b[(i, j)].norm());
+        }
+    }
+    if res.is_nan() || res > 1e-9 * scale {
+        return Err(TimeError::Linalg(LinalgError::NonFinite));
+    }
+    Ok(())
+}
+
+/// The rows of the eigenvectors `V` that give each output (weights `out` over the
+/// displacements, rows `n..2n` of the state).
+fn output_rows(v: &CMat, out: &[Vec<(usize, f64)>], n: usize) -> Vec<Vec<c64>> {
+    out.iter()
+        .map(|w| {
+            (0..v.ncols())
+                .map(|k| w.iter().map(|&(d, a)| v[(n + d, k)] * a).sum())
+                .collect()
+        })
+        .collect()
+}
+
 /// The output of observation `w` from a state `z` (displacements at `n..2n`).
 fn observed(w: &[(usize, f64)], z: &[c64], n: usize) -> c64 {
     w.iter().map(|&(k, a)| z[n + k] * a).sum()
