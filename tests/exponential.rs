@@ -191,3 +191,35 @@ fn a_run_up_on_tabulated_fluid_film_bearings_with_a_blade_loss_and_a_shock_match
     assert!(dev < 2e-6, "{dev:e}");
     assert!(implicit < 1e-4, "{implicit:e}");
 }
+
+#[test]
+fn coarse_output_intervals_give_the_same_samples() {
+    // 0 -> 450 rad/s in 0.4 s, sampled every 1 ms and every 0.1 s: the stages cut the long
+    // intervals as they cut the speed, so the common samples agree to the tolerance.
+    let s = system(example("example1-nvd.modal.json")["rotor"].clone());
+    let m = DampedModel::build(&s, &paper_nvd()).unwrap();
+    let c = Coordinates {
+        physical: &s,
+        solved: &s,
+        basis: None,
+        slow: None,
+    };
+    let law = SpeedLaw::Profile(pwl(&[[0.0, 0.0], [0.4, 450.0]]));
+    let fine = spec(law, vec![unbalance(1, 1e-4, 0.0)], vec![], 0.4);
+    let coarse = TimeSpec {
+        output_interval: 0.1,
+        ..fine.clone()
+    };
+    let control = Control::default();
+    let a = solve_exponential(&c, &m, &fine, &control).unwrap();
+    let b = solve_exponential(&c, &m, &coarse, &control).unwrap();
+    assert_eq!(b.time.len(), 5);
+    let peak = a.nodes[0].1.iter().map(|z| z.norm()).fold(0.0, f64::max);
+    for (k, t) in b.time.iter().enumerate() {
+        let i = (t / 1e-3).round() as usize;
+        for node in 0..2 {
+            let dev = (a.nodes[node].1[i] - b.nodes[node].1[k]).norm() / peak;
+            assert!(dev < 2e-6, "t = {t}: {dev:e}");
+        }
+    }
+}

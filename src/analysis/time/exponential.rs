@@ -231,15 +231,22 @@ pub fn solve(
         a.1 |= same && b.1;
         same
     });
+    // A stage: at most this many steps (its eigensolve costs a few steps' work per state),
+    // and a speed drift of at most 5% of the fastest speed. Output intervals longer than
+    // that are cut, so that stages can end inside them.
+    let steps_per_stage = 16 * size.max(8);
+    let drift = 0.05 * lo.abs().max(hi.abs());
+    let grid = refine(
+        &grid,
+        |t| sp.omega(t),
+        drift,
+        steps_per_stage as f64 * h_max,
+    );
     let mut histories = vec![Vec::with_capacity(times.len()); out.len()];
     for h in histories.iter_mut() {
         h.push(c64::new(0.0, 0.0)); // at rest
     }
     let mut next_out = 1;
-    // A stage: at most this many steps (its eigensolve costs a few steps' work per state),
-    // and a speed drift of at most 5% of the fastest speed.
-    let steps_per_stage = 16 * size.max(8);
-    let drift = 0.05 * lo.abs().max(hi.abs());
     let mut z = vec![c64::new(0.0, 0.0); size];
     let mut steps = 0usize;
     let mut coefficients: Vec<(f64, Coefficients)> = vec![];
@@ -351,6 +358,30 @@ pub fn solve(
         steps,
         states: size,
     })
+}
+
+/// `grid` with points added inside each interval (not outputs, not breakpoints) so that none
+/// spans more than `drift` of speed (linear between grid points) or `span` of time.
+fn refine(
+    grid: &[(f64, bool)],
+    omega: impl Fn(f64) -> f64,
+    drift: f64,
+    span: f64,
+) -> Vec<(f64, bool)> {
+    let mut out = Vec::with_capacity(grid.len());
+    for pair in grid.windows(2) {
+        let ((ta, _), (tb, _)) = (pair[0], pair[1]);
+        out.push(pair[0]);
+        let by_speed = if drift > 0.0 {
+            ((omega(tb) - omega(ta)).abs() / drift).ceil()
+        } else {
+            1.0
+        };
+        let pieces = by_speed.max(((tb - ta) / span).ceil()).max(1.0) as usize;
+        out.extend((1..pieces).map(|k| (ta + (tb - ta) * k as f64 / pieces as f64, false)));
+    }
+    out.extend(grid.last().copied());
+    out
 }
 
 fn substeps(span: f64, h_max: f64) -> usize {
