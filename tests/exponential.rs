@@ -45,12 +45,7 @@ fn against_references(
     tight: f64,
 ) -> (f64, f64, TimeResult) {
     let m = DampedModel::build(s, model).unwrap();
-    let c = Coordinates {
-        physical: s,
-        solved: s,
-        basis: None,
-        slow: None,
-    };
+    let c = own(s);
     let control = Control::default();
     let e = solve_exponential(&c, &m, spec, &control).unwrap();
     assert_eq!(e.method, Method::Exponential);
@@ -62,6 +57,16 @@ fn against_references(
     let implicit = solve_in(&c, &m, &at(tight), true, &control).unwrap();
     assert_eq!(implicit.method, Method::Implicit);
     (deviation(&e, &fine), deviation(&fine, &implicit), e)
+}
+
+/// The rotor's own coordinates (no reduction).
+fn own(s: &RotorSystem) -> Coordinates<'_> {
+    Coordinates {
+        physical: s,
+        solved: s,
+        basis: None,
+        slow: None,
+    }
 }
 
 fn deviation(a: &TimeResult, b: &TimeResult) -> f64 {
@@ -103,12 +108,7 @@ fn spec(speed: SpeedLaw, unbalances: Vec<Unbalance>, forces: Vec<Force>, t: f64)
 fn at_constant_speed_it_is_the_closed_form() {
     let s = system(example("example1-nvd.modal.json")["rotor"].clone());
     let m = DampedModel::build(&s, &paper_nvd()).unwrap();
-    let c = Coordinates {
-        physical: &s,
-        solved: &s,
-        basis: None,
-        slow: None,
-    };
+    let c = own(&s);
     let shock = Force {
         node: 1,
         direction: 0.5,
@@ -198,12 +198,7 @@ fn coarse_output_intervals_give_the_same_samples() {
     // intervals as they cut the speed, so the common samples agree to the tolerance.
     let s = system(example("example1-nvd.modal.json")["rotor"].clone());
     let m = DampedModel::build(&s, &paper_nvd()).unwrap();
-    let c = Coordinates {
-        physical: &s,
-        solved: &s,
-        basis: None,
-        slow: None,
-    };
+    let c = own(&s);
     let law = SpeedLaw::Profile(pwl(&[[0.0, 0.0], [0.4, 450.0]]));
     let fine = spec(law, vec![unbalance(1, 1e-4, 0.0)], vec![], 0.4);
     let coarse = TimeSpec {
