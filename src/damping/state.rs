@@ -260,26 +260,24 @@ impl StateModel {
         }
     }
 
-    /// `A(w) = F0 + w F1 + w^2 F2` on the table segment holding `speed` (affine outside the
-    /// table and for constant coefficients: `F2 = None`). Within a segment
-    /// `A = (1 - t)(a0_k + w a1_k) + t (a0_k+1 + w a1_k+1)`, `t = (w - w_k) / (w_k+1 - w_k)`.
-    pub fn local_form(&self, speed: f64) -> (CMat, CMat, Option<CMat>) {
+    /// `(F1, F2)` of `A(w) = F0 + w F1 + w^2 F2` on the table segment holding `speed` (affine
+    /// outside the table and for constant coefficients: `F2 = None`). Within a segment
+    /// `A = (1 - t)(a0_k + w a1_k) + t (a0_k+1 + w a1_k+1)`, `t = (w - w_k) / (w_k+1 - w_k)`,
+    /// so `A(w) - A(u) = (w - u) F1 + (w^2 - u^2) F2` for `w`, `u` in the segment.
+    pub fn speed_terms(&self, speed: f64) -> (CMat, Option<CMat>) {
         let (k, t) = self.segment(speed);
         if t == 0.0 {
-            return (self.a0[k].clone(), self.a1[k].clone(), None);
+            return (self.a1[k].clone(), None);
         }
         let (wk, span) = (self.points[k], self.points[k + 1] - self.points[k]);
         let d0 = &self.a0[k + 1] - &self.a0[k];
         let d1 = &self.a1[k + 1] - &self.a1[k];
         let size = self.size();
-        let f0 = CMat::from_fn(size, size, |i, j| {
-            self.a0[k][(i, j)] - d0[(i, j)] * (wk / span)
-        });
         let f1 = CMat::from_fn(size, size, |i, j| {
             self.a1[k][(i, j)] + (d0[(i, j)] - d1[(i, j)] * wk) / span
         });
         let f2 = CMat::from_fn(size, size, |i, j| d1[(i, j)] / span);
-        (f0, f1, Some(f2))
+        (f1, Some(f2))
     }
 
     /// `A(speed) x` without forming `A`.

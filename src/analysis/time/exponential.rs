@@ -10,9 +10,10 @@
 //! Every pole, however stiff or lightly damped, is then integrated exactly (`e^{lambda h}`),
 //! and the step is held only by what `N` carries: the loads, which turn at the spin speed, and
 //! the drift of the speed over the stage, a small coupling. Within a table segment
-//! `A(w) = F0 + w F1 + w^2 F2` (see [`StateModel::local_form`]), so
-//! `A(Omega) - A_k = (Omega - Omega_k) F1 + (Omega^2 - Omega_k^2) F2`; `F1` and `F2` act on the
-//! velocity rows only, so their modal forms are kept as the product of two thin factors.
+//! `A(w) = F0 + w F1 + w^2 F2` (see [`StateModel::speed_terms`]), so
+//! `A(Omega) - A_k = (Omega - Omega_k) F1 + (Omega^2 - Omega_k^2) F2`; where `F1`, `F2` act on
+//! few rows (the velocity rows of a viscous model), their modal forms are kept as the product
+//! of two thin factors.
 //!
 //! One step of length `h` (all products elementwise in `lambda`, `z = lambda h`):
 //! `a = e^{z/2} w + h/2 phi1(z/2) N(w, t)`, `b = e^{z/2} w + h/2 phi1(z/2) N(a, t + h/2)`,
@@ -121,8 +122,8 @@ impl Coupling {
                 .flat_map(|i| (0..a.ncols()).map(move |j| a[(i, j)]))
                 .collect()
         };
+        let left = CMat::from_fn(m, rows.len(), |i, k| vinv[(i, rows[k])]);
         if 2 * rows.len() < m {
-            let left = CMat::from_fn(m, rows.len(), |i, k| vinv[(i, rows[k])]);
             Coupling {
                 right: row_major(&fv),
                 left: row_major(&left),
@@ -130,9 +131,8 @@ impl Coupling {
                 m,
             }
         } else {
-            let vl = CMat::from_fn(m, rows.len(), |i, k| vinv[(i, rows[k])]);
             Coupling {
-                right: row_major(&(&vl * &fv)),
+                right: row_major(&(&left * &fv)),
                 left: vec![],
                 r: m,
                 m,
@@ -177,14 +177,9 @@ impl Stage {
         columns: &[Vec<c64>],
         out: &[Vec<(usize, f64)>],
     ) -> Result<Self, TimeError> {
-        let (f0, f1, f2) = state.local_form(omega);
+        let (f1, f2) = state.speed_terms(omega);
         let size = state.size();
-        let a = CMat::from_fn(size, size, |i, j| {
-            f0[(i, j)]
-                + f1[(i, j)] * omega
-                + f2.as_ref()
-                    .map_or(c64::new(0.0, 0.0), |f| f[(i, j)] * (omega * omega))
-        });
+        let a = state.at(omega);
         let e = linalg::eigen(&a)?;
         let identity = CMat::from_fn(size, size, |i, j| {
             c64::new(if i == j { 1.0 } else { 0.0 }, 0.0)
