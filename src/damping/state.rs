@@ -130,6 +130,10 @@ impl Branches {
     }
 }
 
+fn real(x: f64) -> c64 {
+    c64::new(x, 0.0)
+}
+
 /// `z' = (A0(Omega) + Omega A1(Omega)) z`, `z = [v, x, y]`. `A0` and `A1` are constant, or,
 /// for supports tabulated against speed, given at the table's speeds and linear between
 /// them (held outside): exact when the mass coefficients are constant, since every other
@@ -151,17 +155,15 @@ impl StateModel {
         let p = br.len();
         let size = 2 * n + p;
         let u = &br.coupling;
-        let real = |x: f64| c64::new(x, 0.0);
         // Right-hand sides for one solve with M: [D0 | K0 + U nu k U^H | U k | D1 | K1].
         let mut rhs = CMat::zeros(n, 4 * n + p);
+        // U diag(nu k) U^H, a product of n x p factors (p reaches 6n with nonviscous damping).
+        let nu_k: Vec<c64> = br.main_stiffness.iter().map(|&k| real(k)).collect();
+        let kadd = linalg::scaled_product(u, &nu_k, &u.adjoint().to_owned());
         for r in 0..n {
             for c in 0..n {
-                let mut kadd = c64::new(0.0, 0.0);
-                for j in 0..p {
-                    kadd += u[(r, j)] * br.main_stiffness[j] * u[(c, j)].conj();
-                }
                 rhs[(r, c)] = so.d0[(r, c)];
-                rhs[(r, n + c)] = so.k0[(r, c)] + kadd;
+                rhs[(r, n + c)] = so.k0[(r, c)] + kadd[(r, c)];
                 rhs[(r, 2 * n + p + c)] = so.d1[(r, c)];
                 rhs[(r, 3 * n + p + c)] = so.k1[(r, c)];
             }
@@ -283,11 +285,17 @@ impl StateModel {
     /// `A(speed) x` without forming `A`.
     pub fn apply(&self, speed: f64, x: &[c64]) -> Vec<c64> {
         let (k, t) = self.segment(speed);
-        let mut y = matvec(&self.a0[k], x, 1.0 - t);
-        add_matvec(&mut y, &self.a1[k], x, speed * (1.0 - t));
+        let mut y = vec![c64::new(0.0, 0.0); self.size()];
+        let mut add = |a: &CMat, f: f64| {
+            if f != 0.0 {
+                linalg::add_matvec(&mut y, a, x, real(f));
+            }
+        };
+        add(&self.a0[k], 1.0 - t);
+        add(&self.a1[k], speed * (1.0 - t));
         if t != 0.0 {
-            add_matvec(&mut y, &self.a0[k + 1], x, t);
-            add_matvec(&mut y, &self.a1[k + 1], x, speed * t);
+            add(&self.a0[k + 1], t);
+            add(&self.a1[k + 1], speed * t);
         }
         y
     }
@@ -409,37 +417,16 @@ impl ShiftInvert {
         let (b2, b3) = rest.split_at(n);
         let w: Vec<c64> = b3.iter().zip(&self.dyy).map(|(b, d)| b * d).collect();
         let mut x = b1.to_vec();
-        add_matvec(&mut x, &self.avv, b2, -1.0);
-        add_matvec(&mut x, &self.avy, &w, -1.0);
+        let minus = real(-1.0);
+        linalg::add_matvec(&mut x, &self.avv, b2, minus);
+        linalg::add_matvec(&mut x, &self.avy, &w, minus);
         self.lu.solve_in_place(&mut x);
         let mut out: Vec<c64> = b2.iter().zip(&x).map(|(b, x)| b + self.sigma * x).collect();
         out.extend_from_slice(&x);
         let mut y = b3.to_vec();
-        add_matvec(&mut y, &self.ayx, &x, -1.0);
+        linalg::add_matvec(&mut y, &self.ayx, &x, minus);
         out.extend(y.iter().zip(&self.dyy).map(|(y, d)| y * d));
         out
-    }
-}
-
-fn matvec(a: &CMat, x: &[c64], f: f64) -> Vec<c64> {
-    let mut y = vec![c64::new(0.0, 0.0); a.nrows()];
-    add_matvec(&mut y, a, x, f);
-    y
-}
-
-/// `y += f A x`, skipping zero entries of `x`.
-fn add_matvec(y: &mut [c64], a: &CMat, x: &[c64], f: f64) {
-    if f == 0.0 {
-        return;
-    }
-    for (j, &xj) in x.iter().enumerate() {
-        if xj.re == 0.0 && xj.im == 0.0 {
-            continue;
-        }
-        let xf = xj * f;
-        for (i, yi) in y.iter_mut().enumerate() {
-            *yi += a[(i, j)] * xf;
-        }
     }
 }
 

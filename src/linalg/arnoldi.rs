@@ -47,7 +47,8 @@ pub fn nearest(
     };
     let mut v0: Vec<c64> = (0..size).map(|_| c64::new(next(), next())).collect();
     normalise(&mut v0);
-    let mut basis: Vec<Vec<c64>> = vec![v0];
+    // The basis, column-major: Gram-Schmidt is two products with it (classical, twice).
+    let mut basis: Vec<c64> = v0;
     // Columns of H (each of length j + 2).
     let mut h: Vec<Vec<c64>> = vec![];
     let mut target = 40.min(max_dimension);
@@ -56,18 +57,17 @@ pub fn nearest(
         let mut exhausted = false;
         while h.len() < target {
             let j = h.len();
-            let mut w = solve(&basis[j]);
+            let mut w = solve(&basis[j * size..(j + 1) * size]);
             if w.iter().any(|z| !z.re.is_finite() || !z.im.is_finite()) {
                 return Ok(None);
             }
             let mut col = vec![zero; j + 2];
+            let mut c = vec![zero; j + 1];
             for _pass in 0..2 {
-                for (i, v) in basis.iter().enumerate() {
-                    let c: c64 = v.iter().zip(&w).map(|(a, b)| a.conj() * b).sum();
-                    col[i] += c;
-                    for (wk, vk) in w.iter_mut().zip(v) {
-                        *wk -= c * vk;
-                    }
+                super::adjoint_matvec_slice(&mut c, &basis, &w);
+                super::add_matvec_slice(&mut w, &basis, &c, c64::new(-1.0, 0.0));
+                for (a, b) in col.iter_mut().zip(&c) {
+                    *a += b;
                 }
             }
             let norm = norm2(&w);
@@ -79,10 +79,7 @@ pub fn nearest(
                 exhausted = true;
                 break;
             }
-            for wk in w.iter_mut() {
-                *wk /= norm;
-            }
-            basis.push(w);
+            basis.extend(w.iter().map(|wk| wk / norm));
         }
         let m = h.len();
         let hm = CMat::from_fn(m, m, |i, j| if i <= j + 1 { h[j][i] } else { zero });
@@ -111,12 +108,8 @@ pub fn nearest(
             };
             for &(s, _, _, k) in &ritz[..inside] {
                 let mut x = vec![zero; size];
-                for (i, v) in basis.iter().take(m).enumerate() {
-                    let y = e.vectors[(i, k)];
-                    for (xk, vk) in x.iter_mut().zip(v) {
-                        *xk += y * vk;
-                    }
-                }
+                let y: Vec<c64> = (0..m).map(|i| e.vectors[(i, k)]).collect();
+                super::add_matvec_slice(&mut x, &basis[..m * size], &y, c64::new(1.0, 0.0));
                 normalise(&mut x);
                 out.values.push(s);
                 out.vectors.push(x);

@@ -97,16 +97,14 @@ pub fn step_bound(tol: f64, w: f64) -> f64 {
     theta / w.max(f64::MIN_POSITIVE)
 }
 
-/// `V^-1 F V` for the drift of the speed, applied as `y += f (V^-1 F V) x`: row-major, and as
-/// the product of two thin factors where `F` has few rows that are not zero (the velocity
-/// rows of a viscous model; the internal rows of a nonviscous one also turn with the speed).
+/// `V^-1 F V` for the drift of the speed, applied as `y += f (V^-1 F V) x`: whole, or as the
+/// product of two thin factors where `F` has few rows that are not zero (the velocity rows of
+/// a viscous model; the internal rows of a nonviscous one also turn with the speed).
 struct Coupling {
-    /// `r x m`, row-major: `F`'s rows times `V`, or the whole `V^-1 F V` (`left` empty).
-    right: Vec<c64>,
-    /// `m x r`, row-major: the columns of `V^-1` at those rows.
-    left: Vec<c64>,
-    r: usize,
-    m: usize,
+    /// `r x m`: `F`'s rows times `V`, or the whole `V^-1 F V` (`left` absent).
+    right: CMat,
+    /// `m x r`: the columns of `V^-1` at those rows.
+    left: Option<CMat>,
 }
 
 impl Coupling {
@@ -117,41 +115,30 @@ impl Coupling {
             .collect();
         let f_rows = CMat::from_fn(rows.len(), m, |k, j| f[(rows[k], j)]);
         let fv = &f_rows * v;
-        let row_major = |a: &CMat| -> Vec<c64> {
-            (0..a.nrows())
-                .flat_map(|i| (0..a.ncols()).map(move |j| a[(i, j)]))
-                .collect()
-        };
         let left = CMat::from_fn(m, rows.len(), |i, k| vinv[(i, rows[k])]);
         if 2 * rows.len() < m {
             Coupling {
-                right: row_major(&fv),
-                left: row_major(&left),
-                r: rows.len(),
-                m,
+                right: fv,
+                left: Some(left),
             }
         } else {
             Coupling {
-                right: row_major(&(&left * &fv)),
-                left: vec![],
-                r: m,
-                m,
+                right: &left * &fv,
+                left: None,
             }
         }
     }
 
     fn add_apply(&self, x: &[c64], f: f64, y: &mut [c64], tmp: &mut Vec<c64>) {
-        let dot = |row: &[c64], x: &[c64]| -> c64 { row.iter().zip(x).map(|(a, b)| a * b).sum() };
-        if self.left.is_empty() {
-            for (yi, row) in y.iter_mut().zip(self.right.chunks_exact(self.m)) {
-                *yi += dot(row, x) * f;
+        let f = c64::new(f, 0.0);
+        match &self.left {
+            None => linalg::add_matvec(y, &self.right, x, f),
+            Some(left) => {
+                tmp.clear();
+                tmp.resize(self.right.nrows(), c64::new(0.0, 0.0));
+                linalg::add_matvec(tmp, &self.right, x, f);
+                linalg::add_matvec(y, left, tmp, c64::new(1.0, 0.0));
             }
-            return;
-        }
-        tmp.clear();
-        tmp.extend(self.right.chunks_exact(self.m).map(|row| dot(row, x) * f));
-        for (yi, row) in y.iter_mut().zip(self.left.chunks_exact(self.r)) {
-            *yi += dot(row, tmp);
         }
     }
 }
