@@ -7,8 +7,8 @@
 //! [`GATE`] is refused: the branch gets no value at that speed (the hysteretic model leaves
 //! modes undefined near critical speeds) and the pole may start a branch of its own.
 
-use super::poles::{PoleSet, mac};
-use crate::linalg::c64;
+use super::poles::PoleSet;
+use crate::linalg::{self, c64};
 
 /// Largest cost of an accepted assignment. A forward and a backward pole of the same shape at
 /// `+-omega` cost 2; the same pole predicted within 50% with the same shape costs < 0.5.
@@ -67,15 +67,20 @@ impl Tracker {
         let mut taken = vec![false; poles.len()];
         let mut assigned: Vec<Option<usize>> = vec![None; branches.len()];
         if !branches.is_empty() && !poles.is_empty() {
+            let shapes: Vec<&[c64]> = branches.iter().map(|b| &b.shape[..]).collect();
+            let pole_shapes: Vec<&[c64]> = poles.iter().map(|p| &p.shape[..]).collect();
+            let macs = linalg::mac_matrix(&shapes, &pole_shapes);
             let cost: Vec<Vec<f64>> = branches
                 .iter()
-                .map(|b| {
+                .zip(&macs)
+                .map(|(b, macs)| {
                     let pred = b.predict(speed);
                     poles
                         .iter()
-                        .map(|p| {
+                        .zip(macs)
+                        .map(|(p, mac)| {
                             let scale = pred.norm().max(p.s.norm()).max(f64::MIN_POSITIVE);
-                            (1.0 - mac(&b.shape, &p.shape)) + (pred - p.s).norm() / scale
+                            (1.0 - mac) + (pred - p.s).norm() / scale
                         })
                         .collect()
                 })

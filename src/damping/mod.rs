@@ -156,12 +156,47 @@ impl DampedModel {
     /// (no rigid-body mode) for every model, and it is the basis of the equivalent and
     /// nonviscous models.
     pub fn build(system: &RotorSystem, model: &DampingModel) -> Result<Self, DampingError> {
-        let all = ModalBasis::of(system)?;
         let layout = system.layout();
-        let xy_all = match layout {
-            Layout::Doubled => Some(HermitianBasis::of(system)?),
-            Layout::Single => None,
+        let modal = || -> Result<_, DampingError> {
+            let all = ModalBasis::of(system)?;
+            let xy_all = match layout {
+                Layout::Doubled => Some(HermitianBasis::of(system)?),
+                Layout::Single => None,
+            };
+            Ok((all, xy_all))
         };
+        // One realization per speed of the supports' tables (one in all when constant).
+        let table = system.table_speeds();
+        let points = if table.is_empty() { vec![0.0] } else { table };
+        let realize =
+            || -> Vec<Realized> { points.iter().map(|&w| Realized::at(system, w)).collect() };
+        let tabulate = |models: Vec<StateModel>| -> StateModel {
+            if models.len() == 1 {
+                models.into_iter().next().expect("one")
+            } else {
+                StateModel::table(&points, models)
+            }
+        };
+        // The viscous and hysteretic models need no modal basis: built beside it, on two
+        // cores (a third of a run-up's time on a 100-element rotor).
+        let without_basis = || -> Option<Result<ModelKind, DampingError>> {
+            let realized = match model {
+                DampingModel::Viscous | DampingModel::Hysteretic => realize(),
+                _ => return None,
+            };
+            let size = realized[0].size();
+            Some(match model {
+                DampingModel::Viscous => realized
+                    .iter()
+                    .map(|r| StateModel::new(&SecondOrder::viscous(r), &Branches::none(size)))
+                    .collect::<Result<_, _>>()
+                    .map(|m| ModelKind::Linear(Box::new(tabulate(m))))
+                    .map_err(DampingError::from),
+                _ => Self::hysteretic(&realized, &tabulate),
+            })
+        };
+        let (bases_of, early) = rayon::join(modal, without_basis);
+        let (all, xy_all) = bases_of?;
         let natural_frequencies = xy_all
             .as_ref()
             .map_or_else(|| all.omega.clone(), |b| b.omega.clone());
@@ -171,66 +206,45 @@ impl DampedModel {
             _ => None,
         };
         let bases = || Bases::new(system, &all, xy_all.as_ref(), modes);
-        // One realization per speed of the supports' tables (one in all when constant).
-        let table = system.table_speeds();
-        let points = if table.is_empty() { vec![0.0] } else { table };
-        let realized: Vec<Realized> = points.iter().map(|&w| Realized::at(system, w)).collect();
-        let tabulate = |models: Vec<StateModel>| -> StateModel {
-            if models.len() == 1 {
-                models.into_iter().next().expect("one")
-            } else {
-                StateModel::table(&points, models)
-            }
-        };
-        let size = realized[0].size();
-        let kind = match model {
-            DampingModel::Viscous => ModelKind::Linear(Box::new(tabulate(
-                realized
-                    .iter()
-                    .map(|r| StateModel::new(&SecondOrder::viscous(r), &Branches::none(size)))
-                    .collect::<Result<_, _>>()?,
-            ))),
-            DampingModel::Hysteretic => {
-                let per_point: Vec<Vec<hysteretic::SignedModel>> = realized
-                    .iter()
-                    .map(hysteretic::signed_models)
-                    .collect::<Result<_, _>>()?;
-                let patterns = per_point[0].len();
-                let mut out = vec![];
-                for k in 0..patterns {
-                    let first = &per_point[0][k];
-                    out.push(hysteretic::SignedModel {
-                        nonrotating: first.nonrotating,
-                        rotating: first.rotating,
-                        counter: first.counter,
-                        model: tabulate(per_point.iter().map(|p| p[k].model.clone()).collect()),
-                    });
+        let kind = match early {
+            Some(kind) => kind?,
+            None => {
+                let realized = realize();
+                let size = realized[0].size();
+                match model {
+                    DampingModel::Equivalent { .. } => {
+                        let b = bases();
+                        ModelKind::Linear(Box::new(tabulate(
+                            realized
+                                .iter()
+                                .map(|r| {
+                                    let so = equivalent::second_order(
+                                        r,
+                                        &system.hysteretic_rotating,
+                                        &b,
+                                    );
+                                    StateModel::new(&so, &Branches::none(size))
+                                })
+                                .collect::<Result<_, _>>()?,
+                        )))
+                    }
+                    DampingModel::Nonviscous(spec) => {
+                        let b = bases();
+                        let refs: Vec<&Realized> = realized.iter().collect();
+                        let branches =
+                            nonviscous::branches(&refs, &system.hysteretic_rotating, &b, spec);
+                        ModelKind::Linear(Box::new(tabulate(
+                            realized
+                                .iter()
+                                .zip(&branches)
+                                .map(|(r, br)| StateModel::new(&SecondOrder::viscous(r), br))
+                                .collect::<Result<_, _>>()?,
+                        )))
+                    }
+                    DampingModel::Viscous | DampingModel::Hysteretic => {
+                        unreachable!("built beside the basis")
+                    }
                 }
-                ModelKind::Hysteretic(out)
-            }
-            DampingModel::Equivalent { .. } => {
-                let b = bases();
-                ModelKind::Linear(Box::new(tabulate(
-                    realized
-                        .iter()
-                        .map(|r| {
-                            let so = equivalent::second_order(r, &system.hysteretic_rotating, &b);
-                            StateModel::new(&so, &Branches::none(size))
-                        })
-                        .collect::<Result<_, _>>()?,
-                )))
-            }
-            DampingModel::Nonviscous(spec) => {
-                let b = bases();
-                let refs: Vec<&Realized> = realized.iter().collect();
-                let branches = nonviscous::branches(&refs, &system.hysteretic_rotating, &b, spec);
-                ModelKind::Linear(Box::new(tabulate(
-                    realized
-                        .iter()
-                        .zip(&branches)
-                        .map(|(r, br)| StateModel::new(&SecondOrder::viscous(r), br))
-                        .collect::<Result<_, _>>()?,
-                )))
             }
         };
         Ok(DampedModel {
@@ -239,6 +253,29 @@ impl DampedModel {
             layout,
             natural_frequencies,
         })
+    }
+
+    /// The hysteretic model: one state model per sign pattern, each tabulated over `realized`.
+    fn hysteretic(
+        realized: &[Realized],
+        tabulate: &dyn Fn(Vec<StateModel>) -> StateModel,
+    ) -> Result<ModelKind, DampingError> {
+        let per_point: Vec<Vec<hysteretic::SignedModel>> = realized
+            .iter()
+            .map(hysteretic::signed_models)
+            .collect::<Result<_, _>>()?;
+        let patterns = per_point[0].len();
+        let mut out = vec![];
+        for k in 0..patterns {
+            let first = &per_point[0][k];
+            out.push(hysteretic::SignedModel {
+                nonrotating: first.nonrotating,
+                rotating: first.rotating,
+                counter: first.counter,
+                model: tabulate(per_point.iter().map(|p| p[k].model.clone()).collect()),
+            });
+        }
+        Ok(ModelKind::Hysteretic(out))
     }
 
     /// Complex degrees of freedom of the state's coordinates (`2n` when doubled), not
