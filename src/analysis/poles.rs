@@ -127,10 +127,17 @@ pub fn poles_at(model: &DampedModel, speed: f64) -> Result<PoleSet, LinalgError>
     match &model.kind {
         ModelKind::Linear(m) => {
             let e = linalg::eigen(&m.at(speed))?;
+            // Without internal coordinates every pole is a rotor pole: no energies to weigh
+            // (a tenth of a 404-state solve).
+            let all_rotor = e.values.len() <= 2 * n;
             let mut scored: Vec<(f64, (Pole, f64))> = (0..e.values.len())
                 .map(|j| {
                     let (x, y) = split(m, &e.vectors, j);
-                    let fraction = m.rotor_energy_fraction(&x, &y);
+                    let fraction = if all_rotor {
+                        1.0
+                    } else {
+                        m.rotor_energy_fraction(&x, &y)
+                    };
                     (fraction, pole(e.values[j], x, y, m, doubled))
                 })
                 .collect();
