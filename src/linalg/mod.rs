@@ -346,8 +346,9 @@ pub fn solve_complex(a: &CMat, b: &CMat) -> Result<CMat, LinalgError> {
 /// `y += alpha A x` for `A` stored column-major in `a` (`y.len()` rows, `x.len()` columns).
 ///
 /// The matrix-vector products of time stepping and of Arnoldi run here, on faer's kernels
-/// (vectorised for the processor at run time): 4.7 times a plain loop over complex entries at
-/// 120 states, where a step of a run-up is four such products.
+/// (vectorised for the processor at run time): with the branch coupling formed as one
+/// product, they took the nonviscous run-up of the unreduced compressor (120 reduced states,
+/// four products a step) from 2.1 s to 1.0 s.
 pub fn add_matvec_slice(y: &mut [c64], a: &[c64], x: &[c64], alpha: c64) {
     let (rows, cols) = (y.len(), x.len());
     debug_assert_eq!(a.len(), rows * cols);
