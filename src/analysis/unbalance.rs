@@ -17,6 +17,7 @@
 //! which the rotor sees at `2 Omega`, the rotating loss too).
 
 use super::AnalysisError;
+pub use super::audit::frequency::Orbit;
 use super::audit::frequency::{Harmonic, harmonic};
 use super::control::Control;
 use crate::damping::DampedModel;
@@ -30,30 +31,6 @@ pub struct SteadyUnbalance {
     pub dof: usize,
     pub amount: f64,
     pub phase: f64,
-}
-
-/// A node's steady orbit: `r(t) = a e^{i Omega t} + conj(b) e^{-i Omega t}`.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Orbit {
-    pub a: c64,
-    pub b: c64,
-}
-
-impl Orbit {
-    /// `[X, Y]`: `x(t) = Re(X e^{i Omega t})`, `y(t) = Re(Y e^{i Omega t})`.
-    pub fn xy(&self) -> [c64; 2] {
-        [self.a + self.b, c64::new(0.0, -1.0) * (self.a - self.b)]
-    }
-
-    /// Semi-major axis.
-    pub fn major(&self) -> f64 {
-        self.a.norm() + self.b.norm()
-    }
-
-    /// Semi-minor axis.
-    pub fn minor(&self) -> f64 {
-        (self.a.norm() - self.b.norm()).abs()
-    }
 }
 
 /// The orbit of each requested degree of freedom at each speed.

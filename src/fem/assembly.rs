@@ -1,4 +1,5 @@
-//! Assembly of a finite-element rotor into a [`RotorSystem`].
+//! Assembly of a finite-element rotor into a [`RotorSystem`], and of any validated rotor
+//! ([`RotorSystem::assemble`]: the system's type is in `system`, below `fem`).
 //!
 //! Two complex degrees of freedom per node, `(r, phi)` at `2 node` and `2 node + 1`.
 //! The shaft's stiffness and its material loss (`K''_r = eta K_e` per element) are rotating;
@@ -10,7 +11,7 @@ use super::element::{self, Mat4, Section};
 use super::guyan;
 use crate::linalg::{LinalgError, RMat};
 use crate::model::api::GuyanKeep;
-use crate::model::rotor::{BeamRotor, MatrixRotor, ShaftElement};
+use crate::model::rotor::{BeamRotor, MatrixRotor, Rotor, ShaftElement};
 use crate::system::{Dof, DofKind, PlacedSupport, Placement, RotorSystem};
 
 /// The section of an element, with Cowper's shear factor where none was given.
@@ -70,6 +71,17 @@ pub fn beam_shaft(rotor: &BeamRotor) -> RotorSystem {
         s.gyroscopic[(phi, phi)] += d.polar_inertia;
     }
     s
+}
+
+impl RotorSystem {
+    /// Assembles (and reduces, if asked) a validated rotor.
+    pub fn assemble(rotor: &Rotor) -> Result<Self, LinalgError> {
+        match rotor {
+            Rotor::Jeffcott(j) => Ok(Self::jeffcott(j)),
+            Rotor::Beam(b) => beam(b),
+            Rotor::Matrices(m) => Ok(matrices(m)),
+        }
+    }
 }
 
 /// Assembles (and reduces, if asked) a beam rotor.

@@ -4,6 +4,9 @@
 //! (the value after it holds from that time on), constant before the first and after the last
 //! point. The spin speed is such a history without jumps; the rotation angle is its integral
 //! from `t = 0` (exact: piecewise quadratic).
+//!
+//! Also how the unit force of a frequency response is applied ([`Excitation`]; its force on
+//! the coordinates, `Excitation::at`, is the analysis's, in `analysis::audit::frequency`).
 
 use super::error::Invalid;
 
@@ -282,6 +285,17 @@ pub fn sample_count(duration: f64, dt: f64) -> usize {
     } else {
         usize::MAX
     }
+}
+
+/// How a unit force is applied at a node.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Excitation {
+    /// `cos(omega t)` along the angle from x, rad.
+    Direction(f64),
+    /// `e^{i omega t}` on `r`: unit magnitude, whirling forward.
+    Forward,
+    /// `e^{-i omega t}`.
+    Backward,
 }
 
 #[cfg(test)]

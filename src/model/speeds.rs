@@ -1,7 +1,7 @@
-//! Validated spin-speed grids.
+//! Validated spin-speed grids and operating ranges.
 
-use super::api::SpeedsInput;
-use super::error::{Invalid, finite};
+use super::api::{OperatingRange, SpeedsInput};
+use super::error::{Invalid, finite, positive};
 
 /// rad/s to rpm: `60 / (2 pi)`.
 pub const RPM: f64 = 60.0 / (2.0 * std::f64::consts::PI);
@@ -161,6 +161,27 @@ impl SpeedGrid {
     /// First and last speed.
     pub fn range(&self) -> (f64, f64) {
         (self.0[0], self.0[self.0.len() - 1])
+    }
+}
+
+/// Validates an operating range (speeds, rad/s).
+pub(crate) fn operating_range(
+    r: &OperatingRange,
+    at: &str,
+    bad: &mut Invalid,
+) -> Option<(f64, f64)> {
+    let lo = bad.check(&format!("{at}.min"), positive(r.min));
+    let hi = bad.check(&format!("{at}.max"), positive(r.max));
+    match (lo, hi) {
+        (Some(lo), Some(hi)) if hi >= lo => Some((lo, hi)),
+        (Some(lo), Some(hi)) => {
+            bad.push(
+                format!("{at}.max"),
+                format!("must be >= min ({lo}) (got {hi})"),
+            );
+            None
+        }
+        _ => None,
     }
 }
 

@@ -11,9 +11,7 @@
 mod clients;
 mod examples;
 
-use utoipa::openapi::schema::{ObjectBuilder, OneOfBuilder, SchemaFormat, Type};
-use utoipa::openapi::{KnownFormat, RefOr, Schema};
-use utoipa::{OpenApi, PartialSchema, ToSchema};
+use utoipa::OpenApi;
 
 pub use clients::for_clients;
 
@@ -39,31 +37,3 @@ struct ApiDoc;
 pub fn base() -> utoipa::openapi::OpenApi {
     ApiDoc::openapi()
 }
-
-/// The schema of a frequency response's `input.direction` (read by hand from a JSON value in
-/// `model::task`): an angle from x in rad, or a circular force whirling one way.
-pub struct ExcitationDirection;
-
-impl PartialSchema for ExcitationDirection {
-    fn schema() -> RefOr<Schema> {
-        OneOfBuilder::new()
-            .item(
-                ObjectBuilder::new()
-                    .schema_type(Type::Number)
-                    .format(Some(SchemaFormat::KnownFormat(KnownFormat::Double)))
-                    .description(Some("A force along this angle from x, rad.")),
-            )
-            .item(
-                ObjectBuilder::new()
-                    .schema_type(Type::String)
-                    .enum_values(Some(["forward", "backward"]))
-                    .description(Some("A circular force whirling forward or backward.")),
-            )
-            .description(Some(
-                "An angle from x (rad), or `forward`/`backward` for a circular force.",
-            ))
-            .into()
-    }
-}
-
-impl ToSchema for ExcitationDirection {}

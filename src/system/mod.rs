@@ -21,8 +21,8 @@
 
 pub mod realize;
 
-use crate::linalg::{LinalgError, RMat};
-use crate::model::rotor::{Jeffcott, Rotor};
+use crate::linalg::RMat;
+use crate::model::rotor::Jeffcott;
 use crate::model::supports::GeneralSupport;
 
 pub use realize::{Layout, Realized};
@@ -98,15 +98,6 @@ impl Placement {
 }
 
 impl RotorSystem {
-    /// Assembles (and reduces, if asked) a validated rotor.
-    pub fn assemble(rotor: &Rotor) -> Result<Self, LinalgError> {
-        match rotor {
-            Rotor::Jeffcott(j) => Ok(Self::jeffcott(j)),
-            Rotor::Beam(b) => crate::fem::assembly::beam(b),
-            Rotor::Matrices(m) => Ok(crate::fem::assembly::matrices(m)),
-        }
-    }
-
     /// The Jeffcott rotor: one translation, the shaft's stiffness and loss are rotating.
     pub fn jeffcott(j: &Jeffcott) -> Self {
         let one = |v: f64| RMat::from_fn(1, 1, |_, _| v);

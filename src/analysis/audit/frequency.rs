@@ -23,11 +23,35 @@
 
 use crate::analysis::AnalysisError;
 use crate::analysis::control::Control;
-use crate::analysis::unbalance::Orbit;
 use crate::damping::{DampedModel, ModelKind};
 use crate::linalg::{self, CMat, c64};
+pub use crate::model::loads::Excitation;
 use crate::system::{Layout, Realized, RotorSystem};
 use rayon::prelude::*;
+
+/// A node's steady orbit: `r(t) = a e^{i Omega t} + conj(b) e^{-i Omega t}`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Orbit {
+    pub a: c64,
+    pub b: c64,
+}
+
+impl Orbit {
+    /// `[X, Y]`: `x(t) = Re(X e^{i Omega t})`, `y(t) = Re(Y e^{i Omega t})`.
+    pub fn xy(&self) -> [c64; 2] {
+        [self.a + self.b, c64::new(0.0, -1.0) * (self.a - self.b)]
+    }
+
+    /// Semi-major axis.
+    pub fn major(&self) -> f64 {
+        self.a.norm() + self.b.norm()
+    }
+
+    /// Semi-minor axis.
+    pub fn minor(&self) -> f64 {
+        (self.a.norm() - self.b.norm()).abs()
+    }
+}
 
 /// The force: its forward and backward circular parts on each complex coordinate.
 #[derive(Debug, Clone, PartialEq)]
@@ -36,17 +60,7 @@ pub struct Harmonic {
     pub backward: Vec<c64>,
 }
 
-/// How a unit force is applied at a node.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Excitation {
-    /// `cos(omega t)` along the angle from x, rad.
-    Direction(f64),
-    /// `e^{i omega t}` on `r`: unit magnitude, whirling forward.
-    Forward,
-    /// `e^{-i omega t}`.
-    Backward,
-}
-
+// `Excitation` is part of the validated request (`model::loads`); its force is solved for here.
 impl Excitation {
     /// The unit force on degree of freedom `dof` of `n`.
     pub fn at(self, dof: usize, n: usize) -> Harmonic {

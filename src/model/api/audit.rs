@@ -5,7 +5,9 @@
 
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
-use utoipa::ToSchema;
+use utoipa::openapi::schema::{ObjectBuilder, OneOfBuilder, SchemaFormat, Type};
+use utoipa::openapi::{KnownFormat, RefOr, Schema};
+use utoipa::{PartialSchema, ToSchema};
 
 use super::*;
 
@@ -258,9 +260,37 @@ pub struct ResponseInput {
     pub node: i64,
     /// An angle (rad) or `"forward"`/`"backward"` (default 0: along x).
     #[serde(default)]
-    #[schema(value_type = Option<crate::service::openapi::ExcitationDirection>)]
+    #[schema(value_type = Option<ExcitationDirection>)]
     pub direction: Option<Value>,
 }
+
+/// The schema of a frequency response's `input.direction` (read by hand from a JSON value in
+/// `model::task`): an angle from x in rad, or a circular force whirling one way.
+pub struct ExcitationDirection;
+
+impl PartialSchema for ExcitationDirection {
+    fn schema() -> RefOr<Schema> {
+        OneOfBuilder::new()
+            .item(
+                ObjectBuilder::new()
+                    .schema_type(Type::Number)
+                    .format(Some(SchemaFormat::KnownFormat(KnownFormat::Double)))
+                    .description(Some("A force along this angle from x, rad.")),
+            )
+            .item(
+                ObjectBuilder::new()
+                    .schema_type(Type::String)
+                    .enum_values(Some(["forward", "backward"]))
+                    .description(Some("A circular force whirling forward or backward.")),
+            )
+            .description(Some(
+                "An angle from x (rad), or `forward`/`backward` for a circular force.",
+            ))
+            .into()
+    }
+}
+
+impl ToSchema for ExcitationDirection {}
 
 /// Where a frequency response is read.
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]

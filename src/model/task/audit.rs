@@ -3,13 +3,13 @@
 
 use super::loads::node_index;
 use super::{Model, Task, TaskKind, sweep_cost};
-use crate::analysis::audit::frequency::Excitation;
 use crate::model::api::{
-    CriticalSpeedMapRequest, FrequencyResponseRequest, Level1Request, OperatingRange, RotorInput,
-    SpeedsInput, StaticRequest, StaticSupports,
+    CriticalSpeedMapRequest, FrequencyResponseRequest, Level1Request, RotorInput, SpeedsInput,
+    StaticRequest, StaticSupports,
 };
 use crate::model::error::{Invalid, finite, non_negative, positive};
 use crate::model::limits::{Cost, Limits, Size};
+use crate::model::loads::Excitation;
 use crate::model::rotor::{BeamRotor, Rotor};
 use crate::model::speeds::{linear, logarithmic};
 use serde_json::Value;
@@ -371,26 +371,5 @@ impl FrequencyResponseRequest {
             cost: Cost::new(size, 0, 0, extra, count * 10 + 16).with_work(work),
         }
         .bounded(limits, "frequencies")
-    }
-}
-
-/// Validates an operating range.
-pub(super) fn operating_range(
-    r: &OperatingRange,
-    at: &str,
-    bad: &mut Invalid,
-) -> Option<(f64, f64)> {
-    let lo = bad.check(&format!("{at}.min"), positive(r.min));
-    let hi = bad.check(&format!("{at}.max"), positive(r.max));
-    match (lo, hi) {
-        (Some(lo), Some(hi)) if hi >= lo => Some((lo, hi)),
-        (Some(lo), Some(hi)) => {
-            bad.push(
-                format!("{at}.max"),
-                format!("must be >= min ({lo}) (got {hi})"),
-            );
-            None
-        }
-        _ => None,
     }
 }

@@ -200,7 +200,7 @@ impl UnbalanceResponseRequest {
         let range = self
             .operating_range
             .as_ref()
-            .and_then(|r| super::audit::operating_range(r, "operating_range", &mut bad));
+            .and_then(|r| crate::model::speeds::operating_range(r, "operating_range", &mut bad));
         if !bad.is_empty() {
             return Err(bad);
         }

@@ -8,16 +8,15 @@ use super::api::{
     FrequencyResponseRequest, Level1Request, MatrixForm, ModalRequest, ReportRequest, RotorInput,
     StaticRequest, SweepRequest, TimeResponseRequest, UnbalanceResponseRequest,
 };
+use super::damping::BranchSet;
 use super::damping::DampingModel;
 use super::error::{Invalid, finite, non_negative, positive};
 use super::limits::{BATCH_PER_THREAD, Cost, Limits, Size};
-use super::loads::{Force, Pwl, SpeedLaw, TimeSpec, Unbalance, sample_count};
+use super::loads::{Excitation, Force, Pwl, SpeedLaw, TimeSpec, Unbalance, sample_count};
 use super::rotor::BeamRotor;
 use super::rotor::Rotor;
 use super::speeds::SpeedGrid;
 use super::supports::held_warning;
-use crate::analysis::audit::frequency::Excitation;
-use crate::damping::nonviscous::BranchSet;
 
 mod analyses;
 mod audit;

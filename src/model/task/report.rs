@@ -1,6 +1,6 @@
 //! The report: the audit's analyses planned as tasks, run one after the other.
 
-use super::audit::{RPM, beam, operating_range};
+use super::audit::{RPM, beam};
 use super::{Task, TaskKind};
 use crate::model::api::{
     CriticalSpeedMapRequest, DampingInput, EquivalentInput, Level1Request, LogRange, NoOptions,
@@ -10,6 +10,7 @@ use crate::model::api::{
 use crate::model::error::Invalid;
 use crate::model::limits::{Cost, Limits};
 use crate::model::rotor::BeamRotor;
+use crate::model::speeds::operating_range;
 
 /// The tasks a report runs.
 #[derive(Debug, Clone)]

@@ -32,7 +32,14 @@ pub fn for_clients(api: OpenApi) -> OpenApi {
     let mut doc = serde_json::to_value(&api).expect("the OpenAPI document serialises");
     tagged_unions(&mut doc);
     jobs(&mut doc);
-    super::examples::add(&mut doc);
+    let job_schemas: Vec<(String, String)> = analyses(&doc)
+        .into_iter()
+        .map(|(a, _, _)| {
+            let name = format!("{}Job", camel(&a));
+            (a, name)
+        })
+        .collect();
+    super::examples::add(&mut doc, &job_schemas);
     strict_inputs(&mut doc);
     prune(&mut doc);
     serde_json::from_value(doc).expect("the finished OpenAPI document deserialises")
@@ -45,7 +52,7 @@ fn schemas(doc: &mut Value) -> &mut Map<String, Value> {
 }
 
 /// `time-response` -> `TimeResponse`.
-pub(super) fn camel(name: &str) -> String {
+fn camel(name: &str) -> String {
     name.split(['-', '_'])
         .map(|w| {
             let mut c = w.chars();
@@ -212,7 +219,7 @@ fn body_schema(doc: &Value, path: &str, method: &str, status: Option<&str>) -> O
 }
 
 /// The analyses a job can run (the `AnalysisName` enum), with their request and answer schemas.
-pub(super) fn analyses(doc: &Value) -> Vec<(String, String, String)> {
+fn analyses(doc: &Value) -> Vec<(String, String, String)> {
     let names: Vec<String> = match doc["components"]["schemas"].get("AnalysisName") {
         Some(s) => s["enum"]
             .as_array()

@@ -66,17 +66,16 @@ fn example(endpoint: &str) -> Option<Value> {
 }
 
 /// Sets the media type's `example` of each request body, and `examples` of its schema (the
-/// first endpoint's, where endpoints share a schema).
-pub(super) fn add(doc: &mut Value) {
+/// first endpoint's, where endpoints share a schema), and of each job's schema (`jobs`:
+/// `(analysis, schema name)`).
+pub(super) fn add(doc: &mut Value, jobs: &[(String, String)]) {
     for (endpoint, _) in EXAMPLES {
         let body = example(endpoint).expect("listed");
         set(doc, &format!("/v1/{endpoint}"), body);
     }
-    let analyses = super::clients::analyses(doc);
-    for (a, _, _) in &analyses {
-        let name = format!("{}Job", super::clients::camel(a));
+    for (a, name) in jobs {
         let input = example(a).unwrap_or_else(|| panic!("no example for analysis {a}"));
-        if let Some(s) = doc["components"]["schemas"].get_mut(&name) {
+        if let Some(s) = doc["components"]["schemas"].get_mut(name) {
             s["examples"] = json!([{ "analysis": a, "input": input }]);
         }
     }
