@@ -10,13 +10,14 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use serde_json::{Value, json};
 use whirl::analysis::control::Control;
+use whirl::answer::execute;
 use whirl::model::Limits;
 use whirl::model::api::{
     DampingMatricesRequest, ModalRequest, SweepRequest, TimeResponseRequest,
     UnbalanceResponseRequest,
 };
 use whirl::model::task::Task;
-use whirl::service::task::{Format, execute, render};
+use whirl::render::{Format, render};
 
 struct Counting;
 

@@ -14,7 +14,7 @@ use std::collections::BTreeMap;
 use sample::elements;
 
 use whirl::model::api::*;
-use whirl::service::plot;
+use whirl::render::plot;
 
 fn example(name: &str) -> serde_json::Value {
     let path = format!("{}/examples/{name}", env!("CARGO_MANIFEST_DIR"));

@@ -8,9 +8,9 @@ mod common;
 mod sample;
 
 use sample::*;
-use whirl::service::plot::campbell_with;
-use whirl::service::plot_audit::*;
-use whirl::service::report::{escape, html};
+use whirl::render::plot::campbell_with;
+use whirl::render::plot_audit::*;
+use whirl::render::report::{escape, html};
 
 #[test]
 fn report_page_holds_every_plot_and_check() {

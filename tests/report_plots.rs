@@ -7,8 +7,8 @@ mod sample;
 
 use sample::*;
 use whirl::model::api::*;
-use whirl::service::plot::{campbell, campbell_with, stability, stability_with};
-use whirl::service::plot_audit::*;
+use whirl::render::plot::{campbell, campbell_with, stability, stability_with};
+use whirl::render::plot_audit::*;
 
 const MODE_COLOURS: [&str; 4] = ["#1F77B4", "#D62728", "#2CA02C", "#9467BD"];
 

@@ -1,6 +1,6 @@
 //! The audit analyses' results to wire types, and the report's verdict.
 
-use super::task::Output;
+use super::output::Output;
 use crate::analysis::audit::critical_map::CriticalMap;
 use crate::analysis::audit::frequency::Excitation;
 use crate::analysis::audit::level1::{ForwardPole, Level1};

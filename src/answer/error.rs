@@ -1,12 +1,13 @@
-//! One error type for every handler, answered as `application/problem+json` (RFC 9457).
-
-use axum::http::{HeaderValue, StatusCode, header};
-use axum::response::{IntoResponse, Response};
+//! Why a request has no answer: one error type for every layer that answers (reading and
+//! validating the request, the analysis, the worker pool, the job store, rendering), with its
+//! status code and its problem (RFC 9457). A failed job keeps the problem; `service::error`
+//! sends it as `application/problem+json`.
 
 use crate::analysis::AnalysisError;
 use crate::analysis::run::RunError;
 use crate::model::Invalid;
 use crate::model::api::{Problem, ProblemField};
+use crate::model::json::JsonError;
 
 #[derive(Debug)]
 pub enum ApiError {
@@ -50,6 +51,15 @@ impl From<Invalid> for ApiError {
     }
 }
 
+impl From<JsonError> for ApiError {
+    fn from(e: JsonError) -> Self {
+        match e {
+            JsonError::Malformed(d) => ApiError::Malformed(d),
+            JsonError::Invalid(i) => ApiError::Invalid(i),
+        }
+    }
+}
+
 impl From<AnalysisError> for ApiError {
     fn from(e: AnalysisError) -> Self {
         match e {
@@ -73,23 +83,20 @@ impl From<RunError> for ApiError {
 pub const RETRY_AFTER_SECONDS: u32 = 5;
 
 impl ApiError {
-    pub fn status(&self) -> StatusCode {
+    /// The HTTP status code of the problem.
+    pub fn status(&self) -> u16 {
         match self {
-            ApiError::Malformed(_) => StatusCode::BAD_REQUEST,
-            ApiError::Invalid(_) | ApiError::Unsolvable(_) => StatusCode::UNPROCESSABLE_ENTITY,
-            ApiError::TooLarge(_) => StatusCode::PAYLOAD_TOO_LARGE,
-            ApiError::Busy | ApiError::TimeLimit(_) | ApiError::Unavailable(_) => {
-                StatusCode::SERVICE_UNAVAILABLE
-            }
-            ApiError::UnsupportedMediaType(_) => StatusCode::UNSUPPORTED_MEDIA_TYPE,
-            ApiError::MethodNotAllowed(_) => StatusCode::METHOD_NOT_ALLOWED,
-            ApiError::RequestTimeout(_) => StatusCode::REQUEST_TIMEOUT,
-            ApiError::NotFound(_) => StatusCode::NOT_FOUND,
-            ApiError::NotAcceptable(_) => StatusCode::NOT_ACCEPTABLE,
-            ApiError::Internal(_) => StatusCode::INTERNAL_SERVER_ERROR,
-            ApiError::Cancelled | ApiError::Stopped(_) | ApiError::Conflict(_) => {
-                StatusCode::CONFLICT
-            }
+            ApiError::Malformed(_) => 400,
+            ApiError::Invalid(_) | ApiError::Unsolvable(_) => 422,
+            ApiError::TooLarge(_) => 413,
+            ApiError::Busy | ApiError::TimeLimit(_) | ApiError::Unavailable(_) => 503,
+            ApiError::UnsupportedMediaType(_) => 415,
+            ApiError::MethodNotAllowed(_) => 405,
+            ApiError::RequestTimeout(_) => 408,
+            ApiError::NotFound(_) => 404,
+            ApiError::NotAcceptable(_) => 406,
+            ApiError::Internal(_) => 500,
+            ApiError::Cancelled | ApiError::Stopped(_) | ApiError::Conflict(_) => 409,
         }
     }
 
@@ -189,44 +196,9 @@ impl ApiError {
         Problem {
             kind: format!("/problems/{kind}"),
             title: title.into(),
-            status: self.status().as_u16(),
+            status: self.status(),
             detail,
             errors,
         }
-    }
-}
-
-impl IntoResponse for ApiError {
-    fn into_response(self) -> Response {
-        if let ApiError::Internal(d) = &self {
-            tracing::error!(detail = %d, "internal error");
-        }
-        let status = self.status();
-        let body = serde_json::to_vec(&self.problem()).unwrap_or_default();
-        let mut resp = (status, body).into_response();
-        let h = resp.headers_mut();
-        h.insert(
-            header::CONTENT_TYPE,
-            HeaderValue::from_static("application/problem+json"),
-        );
-        if let ApiError::Unavailable(d) = &self {
-            tracing::error!(detail = %d, "job store unavailable");
-        }
-        if matches!(
-            self,
-            ApiError::Busy | ApiError::TimeLimit(_) | ApiError::Unavailable(_)
-        ) {
-            h.insert(header::RETRY_AFTER, HeaderValue::from(RETRY_AFTER_SECONDS));
-        }
-        if let ApiError::MethodNotAllowed(allow) = &self
-            && let Ok(v) = HeaderValue::from_str(allow)
-        {
-            h.insert(header::ALLOW, v);
-        }
-        if matches!(self, ApiError::TooLarge(_) | ApiError::RequestTimeout(_)) {
-            // The rest of the body is not read: the connection cannot be reused.
-            h.insert(header::CONNECTION, HeaderValue::from_static("close"));
-        }
-        resp
     }
 }

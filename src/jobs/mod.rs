@@ -1,3 +1,9 @@
+//! Analyses run off the request: the worker pool that synchronous requests and jobs share
+//! ([`pool`]), and the jobs: their store ([`store`]: SQLite or PostgreSQL), how a job and its
+//! result are kept there ([`stored`]), this replica's runner that claims and runs them
+//! ([`runner`]), and the counters `/metrics` shows ([`metrics`]). Below the HTTP layer, which
+//! uses [`Jobs`] and the pool; above `answer`, whose outputs and errors it keeps.
+//!
 //! Asynchronous jobs as the API sees them: `POST /v1/jobs` puts an analysis in the shared
 //! queue; its status, progress, result and cancellation are read from the job store, so any
 //! replica answers for any job, and a restart forgets nothing.
@@ -5,92 +11,35 @@
 //! A job is validated when it is submitted (422 at once, never later) and admitted against the
 //! shared queue (503 with `Retry-After` when `queue` jobs already wait, over all replicas). The
 //! replica that received it then looks for work at once, so a job submitted to an idle replica
-//! starts without waiting for a poll ([`runner`](super::runner) claims and runs jobs).
+//! starts without waiting for a poll ([`runner`] claims and runs jobs).
 //! Cancelling takes effect at once: the store records the job as cancelled, and the replica
 //! running it stops its analysis at its next check (at once when that is this replica, within
 //! a heartbeat otherwise). Results are kept gzipped in the store, within a total of compressed
 //! bytes, a count and an age; past those the oldest finished jobs are forgotten (404).
 
-use std::io::{Read, Write};
+pub mod metrics;
+pub mod pool;
+pub mod runner;
+pub mod store;
+pub mod stored;
+
 use std::sync::Arc;
 use std::time::{Duration, UNIX_EPOCH};
 
 use serde_json::Value;
 
-use super::error::ApiError;
-use super::json::from_value;
-use super::pool::WorkerPool;
-use super::runner::Runner;
-use super::store::{JobRow, NewJob, Stats, Store, StoreError, status_text};
-use super::task::Output;
-use crate::model::api::{AnalysisName, JobInfo, JobStatus, Problem};
-use crate::model::task::JobInput;
-use crate::model::{Invalid, Limits, Task};
-
-/// A finished job's result: its JSON, gzipped (as the store keeps it).
-pub struct Stored {
-    pub analysis: &'static str,
-    pub gzip: Vec<u8>,
-}
-
-impl Stored {
-    pub fn new(analysis: &'static str, out: &Output) -> Result<Self, ApiError> {
-        let json = serde_json::to_vec(out).map_err(|e| ApiError::Internal(e.to_string()))?;
-        let mut enc = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::fast());
-        enc.write_all(&json)
-            .map_err(|e| ApiError::Internal(e.to_string()))?;
-        let gzip = enc
-            .finish()
-            .map_err(|e| ApiError::Internal(e.to_string()))?;
-        Ok(Stored { analysis, gzip })
-    }
-
-    /// The output of `analysis` back from its gzipped JSON.
-    pub fn output(analysis: &str, gzip: &[u8]) -> Result<Output, ApiError> {
-        let mut json = vec![];
-        flate2::read::GzDecoder::new(gzip)
-            .read_to_end(&mut json)
-            .map_err(|e| ApiError::Internal(format!("stored result: {e}")))?;
-        Output::from_json(analysis, &json)
-    }
-}
+use crate::answer::ApiError;
+use crate::model::Task;
+use crate::model::api::{JobInfo, JobStatus};
+use pool::WorkerPool;
+use runner::Runner;
+use store::{JobRow, NewJob, Stats, Store, StoreError, status_text};
+pub use stored::{Stored, job_input, parse_stored, stopped};
 
 impl From<StoreError> for ApiError {
     fn from(e: StoreError) -> Self {
         ApiError::Unavailable(e.0)
     }
-}
-
-/// A job's input, typed by its analysis.
-pub fn job_input(analysis: AnalysisName, input: Value) -> Result<JobInput, ApiError> {
-    if !input.is_object() {
-        return Err(ApiError::Invalid(Invalid::one(
-            "(body)",
-            "must be a JSON object: the body of the analysis's endpoint",
-        )));
-    }
-    Ok(match analysis {
-        AnalysisName::Modal => JobInput::Modal(from_value(input)?),
-        AnalysisName::Campbell => JobInput::Campbell(from_value(input)?),
-        AnalysisName::Stability => JobInput::Stability(from_value(input)?),
-        AnalysisName::Damping => JobInput::Damping(from_value(input)?),
-        AnalysisName::TimeResponse => JobInput::Time(from_value(input)?),
-        AnalysisName::UnbalanceResponse => JobInput::Unbalance(from_value(input)?),
-        AnalysisName::CriticalSpeedMap => JobInput::CriticalMap(from_value(input)?),
-        AnalysisName::Static => JobInput::Static(from_value(input)?),
-        AnalysisName::Level1 => JobInput::Level1(from_value(input)?),
-        AnalysisName::FrequencyResponse => JobInput::Frequency(from_value(input)?),
-        AnalysisName::Report => JobInput::Report(Box::new(from_value(input)?)),
-    })
-}
-
-/// A stored request parsed again into a task, with this replica's limits.
-pub fn parse_stored(analysis: &str, input: &str, limits: &Limits) -> Result<Task, ApiError> {
-    let bad = |e: serde_json::Error| ApiError::Internal(format!("stored job: {e}"));
-    let name: AnalysisName =
-        serde_json::from_value(Value::String(analysis.to_string())).map_err(bad)?;
-    let value: Value = serde_json::from_str(input).map_err(bad)?;
-    Ok(job_input(name, value)?.parse(limits)?)
 }
 
 pub fn rfc3339_ms(ms: i64) -> String {
@@ -137,10 +86,6 @@ pub fn info(r: &JobRow) -> JobInfo {
         finished_at: r.finished_ms.map(rfc3339_ms),
         error: r.error.clone(),
     }
-}
-
-pub fn stopped(reason: &str) -> Problem {
-    ApiError::Stopped(reason.to_string()).problem()
 }
 
 fn not_found(id: &str) -> ApiError {

@@ -13,7 +13,7 @@
 //! - **Admission.** At most `workers + queue` synchronous analyses are running or waiting;
 //!   beyond that a request is refused at once with 503 and `Retry-After` rather than piling up
 //!   memory.
-//! - **Jobs** wait in the shared queue (`service::store`), not here: a replica claims one only
+//! - **Jobs** wait in the shared queue (`jobs::store`), not here: a replica claims one only
 //!   with a free worker of its lane in hand ([`WorkerPool::try_worker`]) and when its memory
 //!   estimate fits the free budget, so claims respect each replica's workers and memory.
 //!
@@ -24,7 +24,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use tokio::sync::{OwnedSemaphorePermit, Semaphore};
 
-use super::error::ApiError;
+use crate::answer::ApiError;
 use crate::model::{Cost, Invalid};
 
 /// Work (flops, as estimated) up to which an analysis is short.

@@ -34,19 +34,31 @@ use std::time::{Duration, Instant};
 
 use tokio::sync::Notify;
 
-use super::Config;
-use super::error::ApiError;
-use super::jobs::{Stored, parse_stored, stopped};
 use super::metrics::Metrics;
 use super::pool::{Lane, Reserved, WorkerPool, release_free_memory};
 use super::store::{Claimed, Ending, Room, Store};
-use super::task::execute;
+use super::stored::{Stored, parse_stored, stopped};
 use crate::analysis::control::Control;
+use crate::answer::{ApiError, execute};
+use crate::model::Limits;
 
 /// How often a running job's progress is written and its lease renewed.
 pub const HEARTBEAT: Duration = Duration::from_millis(250);
 /// How often an idle replica looks for queued jobs.
 pub const POLL: Duration = Duration::from_millis(500);
+
+/// What the runner takes of the service's settings (`service::Config::runner`).
+#[derive(Debug, Clone, Copy)]
+pub struct Settings {
+    /// The limits a stored request is parsed with: this replica's.
+    pub limits: Limits,
+    pub max_response_bytes: u64,
+    pub job_time_limit: Duration,
+    /// Compressed bytes of finished jobs' results kept.
+    pub job_result_bytes: u64,
+    /// How long a running job's lease lasts without a heartbeat.
+    pub job_lease: Duration,
+}
 
 /// A job running on this replica.
 struct Local {
@@ -61,7 +73,7 @@ pub struct Runner {
     store: Arc<Store>,
     pool: Arc<WorkerPool>,
     metrics: Arc<Metrics>,
-    config: Arc<Config>,
+    config: Settings,
     local: Mutex<HashMap<String, Local>>,
     claiming: tokio::sync::Mutex<()>,
     wake: Notify,
@@ -85,7 +97,7 @@ impl Runner {
         store: Arc<Store>,
         pool: Arc<WorkerPool>,
         metrics: Arc<Metrics>,
-        config: Arc<Config>,
+        config: Settings,
     ) -> Self {
         Runner {
             worker: worker_name(),
@@ -211,7 +223,7 @@ impl Runner {
             control.clone(),
             stop.clone(),
         ));
-        match parse_stored(&job.analysis, &job.input, &self.config.limits()) {
+        match parse_stored(&job.analysis, &job.input, &self.config.limits) {
             Ok(task) => {
                 let analysis = task.name();
                 let max_bytes = self.config.max_response_bytes;

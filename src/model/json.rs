@@ -1,78 +1,23 @@
-//! A JSON body extractor whose rejections are problems with the path of the bad field: a body
-//! not declared as JSON is 415, syntax errors are 400, type and value errors (including
-//! numbers beyond double range and duplicate keys) 422, an oversized body 413 and a body that
-//! does not arrive in time 408.
+//! Request bodies read strictly, naming the path of every bad field: a syntax error makes the
+//! body malformed (400); type and value errors, numbers beyond double range and duplicate keys
+//! make it invalid (422, each field with its path). The HTTP extractor over this is
+//! `service::json`.
 
-use std::time::Duration;
-
-use axum::body::Bytes;
-use axum::extract::{FromRequest, Request};
-use axum::http::{StatusCode, header};
 use serde::Deserialize;
 use serde::de::{DeserializeOwned, Error as _, MapAccess, SeqAccess, Visitor};
 use serde_json::error::Category;
 use serde_json::{Map, Number, Value};
 
-use super::error::ApiError;
-use crate::model::Invalid;
-use crate::model::tagged;
+use super::error::Invalid;
+use super::tagged;
 
-/// `Json<T>` with problem+json rejections.
-pub struct ApiJson<T>(pub T);
-
-/// Body limits, for the extractor.
-#[derive(Clone, Copy)]
-pub struct BodyLimits {
-    pub max_bytes: usize,
-    pub timeout: Duration,
-}
-
-/// Whether a `Content-Type` is JSON (`application/json` or a `+json` type).
-pub fn is_json(content_type: Option<&str>) -> bool {
-    content_type
-        .and_then(|ct| ct.split(';').next())
-        .map(|m| m.trim().to_ascii_lowercase())
-        .is_some_and(|m| {
-            m == "application/json" || (m.starts_with("application/") && m.ends_with("+json"))
-        })
-}
-
-impl<S: Send + Sync, T: DeserializeOwned> FromRequest<S> for ApiJson<T> {
-    type Rejection = ApiError;
-
-    async fn from_request(req: Request, state: &S) -> Result<Self, ApiError> {
-        let limits = req
-            .extensions()
-            .get::<BodyLimits>()
-            .copied()
-            .unwrap_or(BodyLimits {
-                max_bytes: 0,
-                timeout: Duration::from_secs(30),
-            });
-        let ct = req
-            .headers()
-            .get(header::CONTENT_TYPE)
-            .and_then(|v| v.to_str().ok());
-        if !is_json(ct) {
-            return Err(ApiError::UnsupportedMediaType(format!(
-                "the body must be JSON, sent with `Content-Type: application/json` (got {}); \
-                 with curl, use --json or -H 'content-type: application/json'",
-                ct.map_or("none".to_string(), |c| format!("`{c}`"))
-            )));
-        }
-        let read = Bytes::from_request(req, state);
-        let bytes = match tokio::time::timeout(limits.timeout, read).await {
-            Err(_) => return Err(ApiError::RequestTimeout(limits.timeout)),
-            Ok(r) => r.map_err(|e| {
-                if e.status() == StatusCode::PAYLOAD_TOO_LARGE {
-                    ApiError::TooLarge(limits.max_bytes)
-                } else {
-                    ApiError::Malformed(e.body_text())
-                }
-            })?,
-        };
-        parse(&bytes).map(ApiJson)
-    }
+/// Why a body does not describe a request.
+#[derive(Debug)]
+pub enum JsonError {
+    /// Not JSON (400).
+    Malformed(String),
+    /// JSON, but bad fields (422).
+    Invalid(Invalid),
 }
 
 /// A JSON value read strictly: a key given twice in one object is an error, not last-wins.
@@ -153,12 +98,12 @@ fn fields_at(outer: &str, msg: &str) -> Vec<(String, String)> {
 }
 
 /// A data error at `outer`, whose message may carry paths inside it.
-fn at_path(outer: &str, msg: &str) -> ApiError {
+fn at_path(outer: &str, msg: &str) -> JsonError {
     let mut bad = Invalid::default();
     for (path, message) in fields_at(outer, msg) {
         bad.push(path, message);
     }
-    ApiError::Invalid(bad)
+    JsonError::Invalid(bad)
 }
 
 /// Unknown fields reported (and taken out to look further) before the answer stops there.
@@ -206,12 +151,12 @@ fn remove_at(value: &mut Value, path: &str) -> bool {
 /// Parses a body, naming the path of the first bad field. Two passes: the JSON itself (400 for
 /// syntax; 422 with the path for a number beyond double range or a duplicate key), then the
 /// typed content (422 with the path).
-pub fn parse<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, ApiError> {
+pub fn parse<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, JsonError> {
     let mut de = serde_json::Deserializer::from_slice(bytes);
     let value = match serde_path_to_error::deserialize::<_, Strict>(&mut de) {
         Ok(Strict(v)) => {
             de.end()
-                .map_err(|e| ApiError::Malformed(format!("the body is not valid JSON: {e}")))?;
+                .map_err(|e| JsonError::Malformed(format!("the body is not valid JSON: {e}")))?;
             v
         }
         Err(e) => {
@@ -226,12 +171,12 @@ pub fn parse<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, ApiError> {
             } else if inner.classify() == Category::Data {
                 at_path(&outer, &msg)
             } else {
-                ApiError::Malformed(format!("the body is not valid JSON: {msg}"))
+                JsonError::Malformed(format!("the body is not valid JSON: {msg}"))
             });
         }
     };
     if !value.is_object() {
-        return Err(ApiError::Invalid(Invalid::one(
+        return Err(JsonError::Invalid(Invalid::one(
             "(body)",
             "the body must be a JSON object",
         )));
@@ -242,19 +187,19 @@ pub fn parse<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, ApiError> {
 /// The typed content of a JSON value, naming the path of the bad fields: every unknown field
 /// (up to [`MAX_UNKNOWN_FIELDS`]: each is taken out and the content read again), then the
 /// first other error.
-pub fn from_value<T: DeserializeOwned>(mut value: Value) -> Result<T, ApiError> {
+pub fn from_value<T: DeserializeOwned>(mut value: Value) -> Result<T, JsonError> {
     let mut bad = Invalid::default();
     let mut removed = 0;
     loop {
         let e = match serde_path_to_error::deserialize::<_, T>(&value) {
             Ok(v) if bad.is_empty() => return Ok(v),
-            Ok(_) => return Err(ApiError::Invalid(bad)),
+            Ok(_) => return Err(JsonError::Invalid(bad)),
             Err(e) => e,
         };
         let outer = e.path().to_string();
         let inner = e.into_inner();
         if inner.classify() != Category::Data {
-            return Err(ApiError::Malformed(format!(
+            return Err(JsonError::Malformed(format!(
                 "the body is not valid JSON: {inner}"
             )));
         }
@@ -269,7 +214,7 @@ pub fn from_value<T: DeserializeOwned>(mut value: Value) -> Result<T, ApiError> 
             bad.push(path, message);
         }
         if !again {
-            return Err(ApiError::Invalid(bad));
+            return Err(JsonError::Invalid(bad));
         }
     }
 }
@@ -280,7 +225,7 @@ mod tests {
 
     fn path_of(body: &str) -> (String, String) {
         match parse::<Value>(body.as_bytes()) {
-            Err(ApiError::Invalid(inv)) => {
+            Err(JsonError::Invalid(inv)) => {
                 let e = &inv.errors()[0];
                 (e.path.clone(), e.message.clone())
             }
@@ -296,15 +241,5 @@ mod tests {
         let (p, m) = path_of(r#"{"speeds": [1, 2, 1e999]}"#);
         assert_eq!(p, "speeds[2]");
         assert!(m.contains("finite"), "{m}");
-    }
-
-    #[test]
-    fn json_media_types() {
-        assert!(is_json(Some("application/json")));
-        assert!(is_json(Some("Application/JSON; charset=utf-8")));
-        assert!(is_json(Some("application/problem+json")));
-        assert!(!is_json(Some("application/x-www-form-urlencoded")));
-        assert!(!is_json(Some("text/plain")));
-        assert!(!is_json(None));
     }
 }

@@ -265,10 +265,21 @@ impl Config {
     }
 
     /// Where the jobs are kept.
-    pub fn store_target(&self) -> super::store::Target {
+    pub fn store_target(&self) -> crate::jobs::store::Target {
         match &self.database_url {
-            Some(url) => super::store::Target::Postgres(url.clone()),
-            None => super::store::Target::Sqlite(self.data_dir.clone()),
+            Some(url) => crate::jobs::store::Target::Postgres(url.clone()),
+            None => crate::jobs::store::Target::Sqlite(self.data_dir.clone()),
+        }
+    }
+
+    /// What the job runner takes of the settings.
+    pub fn runner(&self) -> crate::jobs::runner::Settings {
+        crate::jobs::runner::Settings {
+            limits: self.limits(),
+            max_response_bytes: self.max_response_bytes,
+            job_time_limit: self.job_time_limit,
+            job_result_bytes: self.job_result_bytes,
+            job_lease: self.job_lease,
         }
     }
 

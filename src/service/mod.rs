@@ -1,4 +1,9 @@
-//! The HTTP service: the only layer that knows HTTP.
+//! The HTTP service: the only layer that knows HTTP. Handlers ([`routes`], [`routes_audit`])
+//! read a body ([`json`]), parse it into a task with one call into `model`, run it ([`task`])
+//! or submit it as a job (`jobs`), and answer; around them the configuration ([`config`]),
+//! the errors as problems ([`error`]), the OpenAPI document ([`openapi`]), the middleware
+//! (here and [`metrics`]), job results streamed from the store ([`results`]) and the
+//! connection handling ([`server`]).
 //!
 //! [`app`] builds the whole router from a [`Config`], so tests drive it in process without a
 //! socket. Requests are validated on the async runtime (cheap); every numerical analysis runs
@@ -7,23 +12,14 @@
 //! replica's [`runner::Runner`] claims and runs them on its pool.
 
 pub mod config;
-pub mod convert;
-pub mod convert_audit;
 pub mod error;
-pub mod jobs;
 pub mod json;
 pub mod metrics;
 pub mod openapi;
-pub mod plot;
-pub mod plot_audit;
-pub mod pool;
-pub mod report;
 pub mod results;
 pub mod routes;
 pub mod routes_audit;
-pub mod runner;
 pub mod server;
-pub mod store;
 pub mod task;
 
 use std::sync::Arc;
@@ -39,6 +35,7 @@ use tower_http::trace::TraceLayer;
 use utoipa_axum::router::OpenApiRouter;
 use utoipa_swagger_ui::SwaggerUi;
 
+use crate::jobs::{self, pool, runner, store};
 pub use config::Config;
 pub use error::ApiError;
 
@@ -75,7 +72,7 @@ impl AppState {
             store.clone(),
             pool.clone(),
             metrics.clone(),
-            config.clone(),
+            config.runner(),
         ));
         AppState {
             jobs: Arc::new(jobs::Jobs::new(store, runner, config.queue)),

@@ -15,9 +15,9 @@ use axum::response::{IntoResponse, Response};
 use futures_util::stream::{self, Stream};
 
 use super::error::ApiError;
-use super::jobs::Stored;
-use super::store::{JobRow, Store};
-use super::task::{Format, render};
+use crate::jobs::Stored;
+use crate::jobs::store::{JobRow, Store};
+use crate::render::{Format, render};
 
 type Chunk = Result<Bytes, std::io::Error>;
 

@@ -9,10 +9,10 @@ use axum::response::{IntoResponse, Response};
 
 use super::AppState;
 use super::error::ApiError;
-use super::jobs;
 use super::json::ApiJson;
 use super::results;
 use super::task::{negotiate, respond};
+use crate::jobs;
 use crate::model::api::{
     CampbellResponse, DampingMatricesRequest, DampingMatricesResponse, JobInfo, JobRequest,
     ModalRequest, ModalResponse, Problem, StabilityResponse, Status, SweepRequest,
@@ -366,7 +366,7 @@ pub async fn cancel_job(
 pub async fn metrics(State(st): State<AppState>) -> Response {
     let stats = match tokio::time::timeout(STORE_CHECK, st.jobs.stats()).await {
         Ok(r) => r,
-        Err(_) => Err(super::store::StoreError("no answer".into())),
+        Err(_) => Err(jobs::store::StoreError("no answer".into())),
     };
     let mut resp = super::metrics::render(&st, stats.ok()).into_response();
     resp.headers_mut().insert(

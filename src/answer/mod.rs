@@ -1,0 +1,130 @@
+//! The answer to a task, before any transport: the outcome of its analysis in the wire types
+//! its endpoint returns ([`Output`]), or why there is none ([`ApiError`], with its problem).
+//!
+//! [`execute`] runs a task (`analysis::run`) and writes the outcome with the conversions of
+//! analysis results into `model::api` types: [`convert`] (poles, Campbell, stability, damping
+//! matrices, time and unbalance responses) and [`convert_audit`] (the audit's analyses and the
+//! report that gathers them). Synchronous requests and jobs both answer through it: `render`
+//! writes an output as a document, `jobs` keeps it, `service` sends it.
+
+pub mod convert;
+pub mod convert_audit;
+pub mod error;
+mod output;
+
+pub use error::ApiError;
+pub use output::Output;
+
+use crate::analysis::control::Control;
+use crate::analysis::run::{Outcome, run};
+use crate::model::Task;
+use crate::model::limits::BYTES_PER_VALUE;
+use crate::model::task::TaskKind;
+
+impl Output {
+    /// The wire form of an outcome of `task`.
+    fn of(o: Outcome, task: &Task) -> Result<Self, ApiError> {
+        Ok(match o {
+            Outcome::Modal(r) => Output::Modal(convert::modal(&r)),
+            Outcome::Campbell(r) => Output::Campbell(convert::campbell(&r)),
+            Outcome::Stability {
+                threshold,
+                speeds,
+                max_decay_rate,
+            } => Output::Stability(convert::stability(
+                threshold.as_ref(),
+                &speeds,
+                max_decay_rate,
+            )),
+            Outcome::Damping { matrices, model } => {
+                Output::Damping(Box::new(convert::damping_matrices(&matrices, model)))
+            }
+            Outcome::Time(r, reduction) => {
+                let mut t = convert::time_response(&r);
+                t.reduction = reduction.as_ref().map(convert::reduction);
+                Output::Time(t)
+            }
+            Outcome::Unbalance {
+                speeds,
+                nodes,
+                response,
+                peaks,
+                range,
+                model,
+            } => {
+                let mut u = convert::unbalance_response(&speeds, &nodes, &response, model);
+                for (n, p) in u.nodes.iter_mut().zip(&peaks) {
+                    n.peaks = convert_audit::peaks(p, range);
+                }
+                Output::Unbalance(u)
+            }
+            Outcome::CriticalMap { stiffness, map } => {
+                Output::CriticalMap(convert_audit::critical_map(&stiffness, &map))
+            }
+            Outcome::Static {
+                result,
+                gravity,
+                rigid,
+            } => Output::Static(convert_audit::statics(&result, gravity, rigid)),
+            Outcome::Level1 {
+                speed,
+                at,
+                qs,
+                result,
+                qa,
+                model,
+            } => Output::Level1(convert_audit::level1(speed, &at, &qs, &result, qa, model)),
+            Outcome::Frequency {
+                speed,
+                input,
+                output,
+                frequencies,
+                response,
+                model,
+            } => Output::Frequency(convert_audit::frequency(
+                speed,
+                input,
+                output,
+                &frequencies,
+                &response,
+                model,
+            )),
+            Outcome::Report(parts) => {
+                let TaskKind::Report(plan) = &task.kind else {
+                    return Err(ApiError::Internal(
+                        "a report outcome of another task".into(),
+                    ));
+                };
+                let tasks = plan.tasks();
+                let parts = parts
+                    .into_iter()
+                    .zip(tasks)
+                    .map(|(o, t)| {
+                        let mut out = Output::of(o, t)?;
+                        out.set_warnings(t.warnings.clone());
+                        Ok(out)
+                    })
+                    .collect::<Result<Vec<_>, ApiError>>()?;
+                Output::Report(Box::new(
+                    convert_audit::report(parts, plan).map_err(ApiError::Internal)?,
+                ))
+            }
+        })
+    }
+}
+
+/// Runs a task to its output, refusing an answer beyond `max_bytes`.
+pub fn execute(task: &Task, control: &Control, max_bytes: u64) -> Result<Output, ApiError> {
+    let mut out = Output::of(run(task, control)?, task)?;
+    out.set_warnings(task.warnings.clone());
+    let bytes = out.values() * BYTES_PER_VALUE;
+    if bytes > max_bytes {
+        return Err(ApiError::Unsolvable(format!(
+            "the answer would be about {} MB, more than the limit of {} MB \
+             (WHIRL_MAX_RESPONSE_BYTES): use a lower max_frequency or fewer speeds",
+            bytes.div_ceil(1 << 20),
+            max_bytes >> 20
+        )));
+    }
+    Ok(out)
+}

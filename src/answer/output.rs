@@ -1,0 +1,74 @@
+//! What an analysis's endpoint returns: one `model::api` answer per analysis, read back from
+//! its JSON when a job's result is served.
+
+use serde::Serialize;
+
+use super::error::ApiError;
+use crate::model::api::{
+    CampbellResponse, CriticalSpeedMapResponse, DampingMatricesResponse, FrequencyResponseResponse,
+    Level1Response, ModalResponse, ReportResponse, StabilityResponse, StaticResponse,
+    TimeResponseResponse, UnbalanceResponseResponse,
+};
+
+/// The result of an analysis, as its endpoint returns it.
+#[derive(Debug, Clone, Serialize)]
+#[serde(untagged)]
+pub enum Output {
+    Modal(ModalResponse),
+    Campbell(CampbellResponse),
+    Stability(StabilityResponse),
+    Damping(Box<DampingMatricesResponse>),
+    Time(TimeResponseResponse),
+    Unbalance(UnbalanceResponseResponse),
+    CriticalMap(CriticalSpeedMapResponse),
+    Static(StaticResponse),
+    Level1(Level1Response),
+    Frequency(FrequencyResponseResponse),
+    Report(Box<ReportResponse>),
+}
+
+impl Output {
+    /// An output read back from its JSON (a stored job result), by its analysis's name.
+    pub fn from_json(analysis: &str, json: &[u8]) -> Result<Self, ApiError> {
+        let bad = |e: serde_json::Error| ApiError::Internal(format!("stored result: {e}"));
+        Ok(match analysis {
+            "modal" => Output::Modal(serde_json::from_slice(json).map_err(bad)?),
+            "campbell" => Output::Campbell(serde_json::from_slice(json).map_err(bad)?),
+            "stability" => Output::Stability(serde_json::from_slice(json).map_err(bad)?),
+            "damping" => Output::Damping(Box::new(serde_json::from_slice(json).map_err(bad)?)),
+            "time-response" => Output::Time(serde_json::from_slice(json).map_err(bad)?),
+            "unbalance-response" => Output::Unbalance(serde_json::from_slice(json).map_err(bad)?),
+            "critical-speed-map" => Output::CriticalMap(serde_json::from_slice(json).map_err(bad)?),
+            "static" => Output::Static(serde_json::from_slice(json).map_err(bad)?),
+            "level1" => Output::Level1(serde_json::from_slice(json).map_err(bad)?),
+            "frequency-response" => Output::Frequency(serde_json::from_slice(json).map_err(bad)?),
+            "report" => Output::Report(Box::new(serde_json::from_slice(json).map_err(bad)?)),
+            other => return Err(ApiError::Internal(format!("unknown analysis {other}"))),
+        })
+    }
+
+    pub(super) fn set_warnings(&mut self, w: Vec<String>) {
+        match self {
+            Output::Modal(o) => o.warnings = w,
+            Output::Campbell(o) => o.warnings = w,
+            Output::Stability(o) => o.warnings = w,
+            Output::Damping(o) => o.warnings = w,
+            Output::Time(o) => o.warnings = w,
+            Output::Unbalance(o) => o.warnings = w,
+            Output::CriticalMap(o) => o.warnings = w,
+            Output::Static(o) => o.warnings = w,
+            Output::Level1(o) => o.warnings = w,
+            Output::Frequency(o) => o.warnings = w,
+            Output::Report(o) => o.warnings = w,
+        }
+    }
+
+    /// Numbers in the answer, where only the analysis knows them (a Campbell sweep below a
+    /// frequency bound); others were bounded when the request was parsed.
+    pub(super) fn values(&self) -> u64 {
+        match self {
+            Output::Campbell(c) => c.speeds.len() as u64 * (1 + 2 * c.branches.len() as u64),
+            _ => 0,
+        }
+    }
+}

@@ -1,0 +1,177 @@
+//! The answer as a table: one row per speed, time or pole.
+
+use crate::answer::Output;
+
+fn num(v: Option<f64>) -> String {
+    v.map(|x| format!("{x}")).unwrap_or_default()
+}
+
+/// The result as a table: one row per speed, time or pole.
+pub fn csv(out: &Output) -> Option<String> {
+    let mut s = String::new();
+    match out {
+        Output::Modal(m) => {
+            s.push_str("decay_rate,frequency,whirl,damping_ratio,log_decrement,whirl_ratio\n");
+            for p in &m.poles {
+                let whirl = serde_json::to_value(p.whirl).ok()?.as_str()?.to_string();
+                s.push_str(&format!(
+                    "{},{},{whirl},{},{},{}\n",
+                    p.decay_rate,
+                    p.frequency,
+                    p.damping_ratio,
+                    num(p.log_decrement),
+                    num(p.whirl_ratio)
+                ));
+            }
+        }
+        Output::Campbell(c) => {
+            s.push_str("speed");
+            for b in &c.branches {
+                let w = if b.whirl == crate::model::api::Whirl::Forward {
+                    "forward"
+                } else {
+                    "backward"
+                };
+                s.push_str(&format!(
+                    ",mode{}_{w}_frequency,mode{}_{w}_decay_rate",
+                    b.mode, b.mode
+                ));
+            }
+            s.push('\n');
+            for (i, w) in c.speeds.iter().enumerate() {
+                s.push_str(&format!("{w}"));
+                for b in &c.branches {
+                    s.push_str(&format!(
+                        ",{},{}",
+                        num(b.frequency[i]),
+                        num(b.decay_rate[i])
+                    ));
+                }
+                s.push('\n');
+            }
+        }
+        Output::Stability(st) => {
+            s.push_str("speed,max_decay_rate\n");
+            for (w, d) in st.speeds.iter().zip(&st.max_decay_rate) {
+                s.push_str(&format!("{w},{d}\n"));
+            }
+        }
+        Output::Time(t) => {
+            s.push_str("time");
+            for n in &t.nodes {
+                s.push_str(&format!(",node{}_x,node{}_y", n.node, n.node));
+            }
+            s.push('\n');
+            for (i, time) in t.time.iter().enumerate() {
+                s.push_str(&format!("{time}"));
+                for n in &t.nodes {
+                    s.push_str(&format!(",{},{}", n.x[i], n.y[i]));
+                }
+                s.push('\n');
+            }
+        }
+        Output::Unbalance(u) => {
+            s.push_str("speed");
+            for n in &u.nodes {
+                for c in [
+                    "amplitude",
+                    "phase",
+                    "x_amplitude",
+                    "x_phase",
+                    "y_amplitude",
+                    "y_phase",
+                    "major",
+                    "minor",
+                ] {
+                    s.push_str(&format!(",node{}_{c}", n.node));
+                }
+            }
+            s.push('\n');
+            for (i, w) in u.speeds.iter().enumerate() {
+                s.push_str(&format!("{w}"));
+                for n in &u.nodes {
+                    for c in [
+                        &n.amplitude,
+                        &n.phase,
+                        &n.x_amplitude,
+                        &n.x_phase,
+                        &n.y_amplitude,
+                        &n.y_phase,
+                        &n.major,
+                        &n.minor,
+                    ] {
+                        s.push_str(&format!(",{}", c[i]));
+                    }
+                }
+                s.push('\n');
+            }
+        }
+        Output::CriticalMap(c) => {
+            s.push_str("stiffness");
+            for k in 1..=c.frequencies.len() {
+                s.push_str(&format!(",mode{k}_frequency"));
+            }
+            s.push('\n');
+            for (i, k) in c.stiffness.iter().enumerate() {
+                s.push_str(&format!("{k}"));
+                for f in &c.frequencies {
+                    s.push_str(&format!(",{}", f[i]));
+                }
+                s.push('\n');
+            }
+        }
+        Output::Static(st) => {
+            s.push_str("node,position,deflection,deflection_x,reaction,reaction_x\n");
+            for n in &st.nodes {
+                let r = st.supports.iter().filter(|r| r.node == n.node);
+                let (ry, rx) = r.fold((None, None), |(y, x), r| {
+                    (
+                        Some(y.unwrap_or(0.0) + r.reaction),
+                        Some(x.unwrap_or(0.0) + r.reaction_x),
+                    )
+                });
+                s.push_str(&format!(
+                    "{},{},{},{},{},{}\n",
+                    n.node,
+                    n.position,
+                    n.deflection,
+                    n.deflection_x,
+                    num(ry),
+                    num(rx)
+                ));
+            }
+        }
+        Output::Level1(l) => {
+            s.push_str("cross_coupling,log_decrement,frequency\n");
+            for (i, q) in l.cross_coupling.iter().enumerate() {
+                s.push_str(&format!(
+                    "{q},{},{}\n",
+                    num(l.log_decrement[i]),
+                    num(l.frequency[i])
+                ));
+            }
+        }
+        Output::Frequency(f) => {
+            s.push_str(
+                "frequency,amplitude,phase,x_amplitude,x_phase,y_amplitude,y_phase,forward,\
+                 backward\n",
+            );
+            for i in 0..f.frequencies.len() {
+                s.push_str(&format!(
+                    "{},{},{},{},{},{},{},{},{}\n",
+                    f.frequencies[i],
+                    f.amplitude[i],
+                    f.phase[i],
+                    f.x_amplitude[i],
+                    f.x_phase[i],
+                    f.y_amplitude[i],
+                    f.y_phase[i],
+                    f.forward[i],
+                    f.backward[i]
+                ));
+            }
+        }
+        Output::Damping(_) | Output::Report(_) => return None,
+    }
+    Some(s)
+}
