@@ -12,7 +12,7 @@
 use std::time::{Duration, Instant};
 
 use serde_json::Value;
-use whirl::analysis::campbell::{CampbellResult, campbell, campbell_below};
+use whirl::analysis::campbell::{CampbellResult, Keep, campbell, campbell_below};
 use whirl::analysis::control::Control;
 use whirl::analysis::poles::poles_at;
 use whirl::analysis::time::{SpeedLaw, TimeSpec, reduced, time_response};
@@ -98,7 +98,10 @@ fn bounded_sweep(
             model,
             &full,
             speeds,
-            6000.0,
+            Keep {
+                below: 6000.0,
+                lowest: None,
+            },
             reduce,
             &Control::default(),
         )

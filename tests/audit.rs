@@ -77,19 +77,119 @@ async fn level1_margins_differ_between_hysteretic_and_equivalent_damping() {
 async fn level1_with_machine_data_gives_api_617_qa() {
     let rotor =
         json!({"type": "jeffcott", "mass": 2.0, "stiffness": 1e6, "damping_nonrotating": 200.0});
-    // One stage: 2 MW, D = 0.4 m, H = 20 mm, at 10,000 rpm: q_A = 3 * 9.55 * 2000 / (400 * 20
-    // * 10000) kN/mm = 7.1625e-4 kN/mm = 716.25 N/m.
+    // One stage: 2 MW, D = 0.4 m, H = 20 mm, at 10,000 rpm (1047.198 rad/s). The stage torque
+    // T = P / Omega = 2e6 W / 1047.198 rad/s = 1909.86 N m; Wachel's q_A = B_c T / (D H) =
+    // 3 x 1909.86 N m / (0.4 m x 0.02 m) = 716,197 N/m (N m / m^2 = N/m). API 617's form,
+    // 9.55 P[kW] / N[rpm] = 1.91 kN m = 1910 kN mm over D H = 8000 mm^2, times B_c: 0.716
+    // kN/mm, the same.
     let speed = 10_000.0 * std::f64::consts::PI / 30.0;
+    let torque = 2e6 / speed;
+    assert!((torque - 1909.859).abs() < 1e-3);
+    let qa = 3.0 * torque / (0.4 * 0.02);
+    assert!((qa - 716_197.2).abs() < 0.1, "{qa}");
+    let kn_per_mm = 3.0 * 9.549_296_6 * 2000.0 / 10_000.0 * 1000.0 / (400.0 * 20.0);
+    assert!((kn_per_mm * 1e6 / qa - 1.0).abs() < 1e-8);
     let body = json!({"rotor": rotor, "damping": {"model": "viscous"}, "speed": speed,
                       "cross_coupling": {"start": 0, "stop": 3e5, "count": 4},
                       "machine": {"stages": [{"node": 0, "power": 2e6, "diameter": 0.4, "width": 0.02}]}});
     let (status, v) = post_json("/v1/level1", &body).await;
     assert_eq!(status, 200, "{v}");
-    assert!((num(&v["qa"]) / 716.25 - 1.0).abs() < 1e-12, "{v}");
+    assert!((num(&v["qa"]) / qa - 1.0).abs() < 1e-12, "{v}");
+    // q0 = c sqrt(k/m) = 200 N s/m x 707.107 1/s = 141,421 N/m: q0 / q_A = 0.197 < 2, and the
+    // log decrement at q_A is negative: Level II is required, for both reasons.
     assert!(
-        num(&v["ratio"]) > 100.0 && v["passes"] == json!(true),
+        (num(&v["q0"]) / (200.0 * 500_000f64.sqrt()) - 1.0).abs() < 1e-6,
         "{v}"
     );
+    assert!((num(&v["ratio"]) - 0.19746).abs() < 1e-4, "{v}");
+    assert_eq!(v["level2_required"], json!(true), "{v}");
+    assert_eq!(v["passes"], json!(false), "{v}");
+    let reasons: Vec<&str> = v["level2_reasons"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r.as_str().unwrap())
+        .collect();
+    assert!(reasons[0].starts_with("q0 / q_A = 0.197"), "{reasons:?}");
+    assert!(reasons[1].contains("log decrement at q_A"), "{reasons:?}");
+    // A stage a hundredth as strong: q0 / q_A = 19.7, log decrement at q_A well above 0.1.
+    let mut body = body;
+    body["machine"]["stages"][0]["power"] = json!(2e4);
+    let (_, v) = post_json("/v1/level1", &body).await;
+    assert_eq!(v["level2_required"], json!(false), "{v}");
+    assert!(v["level2_reasons"].is_null(), "{v}");
+}
+
+#[tokio::test]
+async fn level1_screens_the_critical_speed_ratio_against_region_b() {
+    // A uniform steel shaft 2 m long, 50 mm, 40 elements, pinned at its ends: the first
+    // critical speed on rigid supports is pi^2 sqrt(E I / (rho A L^4)) = 9.8696 x
+    // sqrt(2.11e11 Pa x 3.068e-7 m^4 / (7810 kg/m^3 x 1.963e-3 m^2 x 16 m^4)) = 160.31 rad/s
+    // (Euler-Bernoulli; shear and rotary inertia lower it by (pi r / L)^2-order terms, 1e-3).
+    let d: f64 = 0.05;
+    let (e, rho, l): (f64, f64, f64) = (2.11e11, 7810.0, 2.0);
+    let (i, a) = (
+        std::f64::consts::PI * d.powi(4) / 64.0,
+        std::f64::consts::PI * d * d / 4.0,
+    );
+    let pinned = std::f64::consts::PI.powi(2) * (e * i / (rho * a * l.powi(4))).sqrt();
+    assert!((pinned - 160.31).abs() < 0.01, "{pinned}");
+    let rotor = json!({"type": "beam",
+        "materials": {"steel": {"young_modulus": e, "density": rho, "poisson_ratio": 0.3,
+                                "loss_factor": 0.0}},
+        "shaft": [{"length": l, "outer_diameter": d, "inner_diameter": 0.0, "material": "steel",
+                   "elements": 40}],
+        "supports": [{"node": 0, "stiffness": 1e6, "damping": 1e4},
+                     {"node": 40, "stiffness": 1e6, "damping": 1e4}]});
+    // MCS 3.2 x the rigid critical speed; a stage that leaves 2 <= q0 / q_A < 10.
+    let speed = 3.2 * pinned;
+    let mut body = json!({"rotor": rotor, "damping": {"model": "viscous"}, "speed": speed,
+                          "machine": {"stages": [{"node": 20, "power": 1e4, "diameter": 0.3,
+                                                  "width": 0.02}],
+                                      "mean_gas_density": 10.0}});
+    let (status, v) = post_json("/v1/level1", &body).await;
+    assert_eq!(status, 200, "{v}");
+    let rigid = num(&v["rigid_critical_speed"]);
+    assert!((rigid / pinned - 1.0).abs() < 2e-3, "{rigid} vs {pinned}");
+    let csr = num(&v["critical_speed_ratio"]);
+    assert!((csr - speed / rigid).abs() < 1e-12);
+    // q_A = 3 x (10 kW / 513.0 rad/s) / (0.3 m x 0.02 m) = 3 x 19.49 N m / 0.006 m^2 = 9747 N/m.
+    assert!((num(&v["qa"]) / 9746.6 - 1.0).abs() < 1e-4, "{v}");
+    let ratio = num(&v["ratio"]);
+    assert!(
+        (2.0..10.0).contains(&ratio),
+        "pick a stage for 2 <= q0/qa < 10: {v}"
+    );
+    // 10 kg/m^3: the boundary is 2.5, CSR 3.2 > 2.5: Region B, Level II.
+    assert_eq!(v["region"], "B", "{v}");
+    assert_eq!(v["level2_required"], json!(true), "{v}");
+    // 16.53 to 60 kg/m^3: 2.69 - 0.0115 rho; at 30 kg/m^3 2.345. A CSR of 2.2 is Region A.
+    body["speed"] = json!(2.2 * rigid);
+    body["machine"]["mean_gas_density"] = json!(30.0);
+    let (_, v) = post_json("/v1/level1", &body).await;
+    assert!((2.0..10.0).contains(&num(&v["ratio"])), "{v}");
+    assert!(num(&v["log_decrement_at_qa"]) >= 0.1, "{v}");
+    assert_eq!(v["region"], "A", "{v}");
+    assert_eq!(v["level2_required"], json!(false), "{v}");
+    // Without a density the screen cannot clear a ratio below 10.
+    body["machine"]["mean_gas_density"] = Value::Null;
+    let (_, v) = post_json("/v1/level1", &body).await;
+    assert!(v["region"].is_null());
+    assert!((2.0..10.0).contains(&num(&v["ratio"])), "{v}");
+    assert_eq!(v["level2_required"], json!(true), "{v}");
+}
+
+#[test]
+fn region_boundary_is_api_617s_line() {
+    use whirl::analysis::audit::level1::region_boundary;
+    assert_eq!(region_boundary(0.0), 2.5);
+    assert_eq!(region_boundary(16.53), 2.5);
+    // 2.69 - 0.0115 x 30 = 2.345; at 60 kg/m^3 2.0; past it nothing is Region A.
+    assert!((region_boundary(30.0) - 2.345).abs() < 1e-12);
+    assert!((region_boundary(60.0) - 2.0).abs() < 1e-12);
+    assert_eq!(region_boundary(61.0), 0.0);
+    // Continuous at 16.53 to the line's rounding: 2.69 - 0.0115 x 16.53 = 2.4999.
+    assert!((2.69 - 0.0115 * 16.53 - 2.5f64).abs() < 1e-3);
 }
 
 /// The peak and half-power points of `Omega^2 / |k - m Omega^2 + i c Omega|` (m = k = 1) by

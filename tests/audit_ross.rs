@@ -373,3 +373,39 @@ fn a_shaft_its_supports_cannot_hold_is_an_error_not_nan() {
     );
     assert!(r.unwrap().nodes.iter().all(|n| n.y.is_finite()));
 }
+
+#[test]
+fn example_1s_moment_peaks_at_midspan_inside_an_element() {
+    // Example 1: a tube 1.5 m, 60/50 mm, steel 7810 kg/m^3, three elements on two equal end
+    // supports. w = 7810 kg/m^3 x 8.639e-4 m^2 x 9.80665 m/s^2 = 66.17 N/m; the moment peaks at
+    // mid-span, inside the middle element (no node there), at w L^2 / 8 = 18.61 N m; the shear
+    // is w L / 2 = 49.63 N at the supports and vanishes at mid-span.
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/example1-hysteretic.modal.json"
+    ))
+    .unwrap();
+    let v: Value = serde_json::from_str(&text).unwrap();
+    let rotor = beam(&v["rotor"]);
+    let r = static_deflection(&rotor, G, Held::Rigid).unwrap();
+    let area = std::f64::consts::PI / 4.0 * (0.06f64.powi(2) - 0.05f64.powi(2));
+    let w = 7810.0 * area * G;
+    assert!((w - 66.17).abs() < 0.01, "{w}");
+    let (l, m) = (1.5, &r.max_moment);
+    assert!((w * l * l / 8.0 - 18.61).abs() < 0.01);
+    println!("max moment {:?}", m);
+    assert_eq!(m.element, 1);
+    assert!((m.position - 0.75).abs() < 1e-9, "{m:?}");
+    assert!(rel(m.bending_moment, -w * l * l / 8.0) < 1e-9, "{m:?}");
+    assert!(rel(r.max_shear.shear.abs(), 0.5 * w * l) < 1e-9);
+    // The diagram: 9 points per element, the moment quadratic and the shear linear between.
+    assert_eq!(r.diagram.len(), 3 * 9);
+    for p in &r.diagram {
+        let x = p.position;
+        assert!(
+            (p.bending_moment + 0.5 * w * x * (l - x)).abs() < 1e-9 * w * l * l,
+            "{p:?}"
+        );
+        assert!((p.shear + w * (0.5 * l - x)).abs() < 1e-9 * w * l, "{p:?}");
+    }
+}

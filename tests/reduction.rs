@@ -2,7 +2,7 @@
 //! of the sweep (not only where the reduction was checked), under every damping model.
 
 use serde_json::Value;
-use whirl::analysis::campbell::{CampbellResult, campbell_below};
+use whirl::analysis::campbell::{CampbellResult, Keep, campbell_below};
 use whirl::analysis::control::Control;
 use whirl::damping::DampedModel;
 use whirl::fem::modal::ModalBasis;
@@ -40,7 +40,10 @@ fn sweep(system: &RotorSystem, model: &DampingModel, reduce: bool) -> CampbellRe
         model,
         &full,
         &speeds,
-        BOUND,
+        Keep {
+            below: BOUND,
+            lowest: None,
+        },
         reduce,
         &Control::default(),
     )

@@ -140,13 +140,14 @@ fn level1_zero_crossing_is_drawn_at_q0() {
 }
 
 #[test]
-fn static_deflection_has_two_panels_and_the_reactions() {
+fn static_deflection_has_three_panels_and_the_reactions() {
     let s = statics();
     assert!((s.supports[0].reaction + s.supports[1].reaction - s.weight).abs() < 1e-9);
     let svg = static_deflection(&s).unwrap();
     let area = frames(&svg);
-    assert_eq!(area.len(), 2);
+    assert_eq!(area.len(), 3);
     assert!(area[0][3] < area[1][1], "deflection above moment");
+    assert!(area[1][3] < area[2][1], "moment above shear");
     assert!(svg.contains("deflection y [µm]"));
     for r in &s.supports {
         assert!(svg.contains(&format!(
@@ -156,12 +157,20 @@ fn static_deflection_has_two_panels_and_the_reactions() {
     }
     let lines = elements(&svg, "polyline");
     let defl = points(lines.iter().find(|a| a["stroke"] == "#1F77B4").unwrap());
-    let moment = points(lines.iter().find(|a| a["stroke"] == "#2CA02C").unwrap());
+    // Moment and shear: one line per element (the shear jumps at a node with a force).
+    let along = |colour: &str| -> Vec<(f64, f64)> {
+        let lines: Vec<_> = lines.iter().filter(|a| a["stroke"] == colour).collect();
+        assert_eq!(lines.len(), s.nodes.len() - 1, "{colour}");
+        lines.into_iter().flat_map(points).collect()
+    };
+    let (moment, shear) = (along("#2CA02C"), along("#9467BD"));
     assert_eq!(defl.len(), s.nodes.len());
-    assert_eq!(moment.len(), s.stations.len());
-    assert!(
-        defl.iter().all(|p| inside(&area[0], *p)) && moment.iter().all(|p| inside(&area[1], *p))
-    );
+    assert_eq!(moment.len(), s.diagram.len());
+    assert_eq!(shear.len(), s.diagram.len());
+    assert!(defl.iter().all(|p| inside(&area[0], *p)));
+    assert!(moment.iter().all(|p| inside(&area[1], *p)));
+    assert!(shear.iter().all(|p| inside(&area[2], *p)));
+    assert!(svg.contains(&format!("|M| max {:.1} N m", s.max_moment.abs())));
     // Lowest point at the disk (node 5, mid-span): largest y in pixels.
     let low = defl
         .iter()
@@ -291,8 +300,8 @@ fn shading_keeps_the_plain_plots() {
             .iter()
             .filter(|a| a.get("opacity").is_some_and(|o| o == "0.22"))
             .count(),
-        3,
-        "two panels, legend"
+        4,
+        "three panels (frequency, decay rate, log decrement), legend"
     );
     let s = StabilityResponse {
         threshold: None,

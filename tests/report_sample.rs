@@ -37,6 +37,7 @@ pub fn rotor() -> RotorInput {
             polar_inertia: 0.178,
             transverse_inertia: 0.0977,
         }],
+        seals: vec![],
         supports: vec![
             SupportInput {
                 node: 1,
@@ -196,7 +197,24 @@ pub fn statics() -> StaticResponse {
             });
         }
     }
+    let (mut mm, mut ms) = (&stations[0], &stations[0]);
+    for st in &stations {
+        if st.bending_moment.abs() > mm.bending_moment.abs() {
+            mm = st;
+        }
+        if st.shear.abs() > ms.shear.abs() {
+            ms = st;
+        }
+    }
+    let (max_moment, max_moment_position) = (mm.bending_moment, mm.position);
+    let (max_shear, max_shear_position, max_shear_element) = (ms.shear, ms.position, ms.element);
     StaticResponse {
+        diagram: stations.clone(),
+        max_moment,
+        max_moment_position,
+        max_shear,
+        max_shear_position,
+        max_shear_element,
         gravity: G,
         supports_model: StaticSupports::Elastic,
         supports: vec![
@@ -231,7 +249,18 @@ pub fn campbell_data() -> CampbellResponse {
         whirl,
         frequency: s.iter().map(|&w| Some(f(w))).collect(),
         decay_rate: s.iter().map(|&w| Some(d(w))).collect(),
+        log_decrement: s
+            .iter()
+            .map(|&w| Some(-2.0 * std::f64::consts::PI * d(w) / f(w).abs()))
+            .collect(),
+        damping_ratio: s.iter().map(|&w| Some(-d(w) / d(w).hypot(f(w)))).collect(),
+        whirl_ratio: s
+            .iter()
+            .map(|&w| Some(if f(w) >= 0.0 { 1.0 } else { -1.0 }))
+            .collect(),
     };
+    let critical = 122.4 / 0.99;
+    let sigma = -2.0 + 0.00568 * critical;
     CampbellResponse {
         branches: vec![
             branch(1, Whirl::Forward, &|w| 122.4 + 0.01 * w, &|w| {
@@ -248,7 +277,20 @@ pub fn campbell_data() -> CampbellResponse {
             }),
         ],
         speeds: s,
-        critical_speeds: vec![122.4 / 0.99],
+        critical_speeds: vec![critical],
+        criticals: vec![CriticalSpeed {
+            speed: critical,
+            whirl: Whirl::Forward,
+            mode: 1,
+            branch: 0,
+            decay_rate: sigma,
+            log_decrement: Some(-2.0 * std::f64::consts::PI * sigma / critical),
+            damping_ratio: -sigma / sigma.hypot(critical),
+            whirl_ratio: 1.0,
+            critically_damped: false,
+        }],
+        overdamped: vec![],
+        ambiguities: vec![],
         threshold: Some(2.0 / 0.00568),
         reduction: None,
         warnings: vec![],
@@ -261,7 +303,10 @@ pub fn peak(speed: f64, amplitude: f64, af: f64) -> ResponsePeak {
     ResponsePeak {
         speed,
         amplitude,
+        amplitude_peak_to_peak: 2.0 * amplitude,
         amplification_factor: Some(af),
+        critically_damped: Some(af < 2.5),
+        one_sided: false,
         half_power: Some([speed * (1.0 - 0.5 / af), speed * (1.0 + 0.5 / af)]),
         separation_margin: Some(sm),
         required_margin: Some(req),
@@ -333,6 +378,11 @@ pub fn level1_data() -> Level1Response {
         log_decrement_at_qa: Some(d(qa)),
         ratio: Some(Q0 / qa),
         passes: Some(true),
+        level2_required: Some(false),
+        level2_reasons: vec![],
+        rigid_critical_speed: None,
+        critical_speed_ratio: None,
+        region: None,
         model: "hysteretic".into(),
         warnings: vec![],
     }
@@ -411,6 +461,9 @@ pub fn report() -> ReportResponse {
         static_deflection: statics(),
         campbell: campbell_data(),
         unbalance: unbalance_data(),
+        unbalance_cases: vec![],
+        vibration_limit: 25.4e-6,
+        provenance: None,
         models: vec![
             margins("hysteretic", 123.6, Some(352.1), 0.33, Q0, 8.33),
             margins("equivalent", 123.4, None, 0.36, 9.4e6, 7.6),

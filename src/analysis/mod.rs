@@ -4,10 +4,12 @@
 pub mod audit;
 pub mod campbell;
 pub mod control;
+pub mod criticals;
 pub mod modal;
 pub mod nearest;
 pub mod poles;
 pub mod reduction;
+pub mod roots;
 pub mod run;
 pub mod stability;
 pub mod time;

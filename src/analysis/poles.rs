@@ -46,14 +46,68 @@ impl Pole {
     }
     /// `-sigma / |s|` (0 for a pole at the origin).
     pub fn damping_ratio(&self) -> f64 {
-        let m = self.s.norm();
-        if m > 0.0 { -self.s.re / m } else { 0.0 }
+        damping_ratio(self.s)
     }
-    /// `-2 pi sigma / |omega|`, `None` for a pole that does not oscillate.
+    /// `-2 pi sigma / |omega|`, `None` for a pole that does not oscillate
+    /// ([`oscillates`](Self::oscillates)).
     pub fn log_decrement(&self) -> Option<f64> {
-        let w = self.s.im.abs();
-        (w > 1e-12 * self.s.norm() && w > 0.0).then(|| -2.0 * std::f64::consts::PI * self.s.re / w)
+        log_decrement(self.s)
     }
+
+    /// Whether the pole oscillates: `|omega| > NON_OSCILLATING |s|`.
+    pub fn oscillates(&self) -> bool {
+        oscillates(self.s)
+    }
+
+    /// The other member of a mirror pair in doubled coordinates: `conj s` with the shape
+    /// `(conj b, conj a)` (module docs); the whirl ratio is that of the mode, the same.
+    pub fn mirror(&self) -> Pole {
+        let h = self.shape.len() / 2;
+        let (a, b) = self.shape.split_at(h);
+        let s = self.s.conj();
+        Pole {
+            s,
+            whirl: if s.im >= 0.0 {
+                Whirl::Forward
+            } else {
+                Whirl::Backward
+            },
+            shape: b.iter().chain(a).map(|z| z.conj()).collect(),
+            whirl_ratio: self.whirl_ratio,
+        }
+    }
+}
+
+/// Below this `|omega| / |s|` a pole does not oscillate: an overdamped (real) pole, whose
+/// frequency is round-off (at rest) or the slow turn the gyroscopic coupling gives it at speed
+/// (a log decrement past 6e6: it never completes a cycle).
+pub const NON_OSCILLATING: f64 = 1e-6;
+
+/// A pole whose frequency is at most this fraction of its decay rate, `|omega| <= 0.01
+/// |sigma|` (a log decrement of at least 628: it decays by e^-628 per cycle), moves as an
+/// overdamped one: real at rest, turned slowly at speed by the gyroscopic coupling of a heavily
+/// damped support. A branch of such poles at every speed is not a Campbell branch.
+pub const OVERDAMPED: f64 = 0.01;
+
+/// Whether `s` is overdamped (see [`OVERDAMPED`]).
+pub fn overdamped(s: c64) -> bool {
+    s.re < 0.0 && s.im.abs() <= OVERDAMPED * -s.re
+}
+
+/// Whether `s` oscillates (see [`NON_OSCILLATING`]).
+pub fn oscillates(s: c64) -> bool {
+    s.im.abs() > NON_OSCILLATING * s.norm()
+}
+
+/// `-2 pi sigma / |omega|` of an oscillating pole `s`, else `None`.
+pub fn log_decrement(s: c64) -> Option<f64> {
+    oscillates(s).then(|| -2.0 * std::f64::consts::PI * s.re / s.im.abs())
+}
+
+/// `-sigma / |s|` (0 at the origin).
+pub fn damping_ratio(s: c64) -> f64 {
+    let m = s.norm();
+    if m > 0.0 { -s.re / m } else { 0.0 }
 }
 
 /// Relative margin below which a pole counts as not unstable: `sigma > 1e-10 |s|`. It keeps an
@@ -71,6 +125,8 @@ pub struct PoleSet {
     pub internal: Vec<Pole>,
     /// Rotor poles the model should have: `2n`.
     pub expected_rotor: usize,
+    /// Whether the model is in doubled coordinates: each rotor pole stands for a mirror pair.
+    pub doubled: bool,
 }
 
 impl PoleSet {
@@ -184,7 +240,15 @@ pub fn poles_at(model: &DampedModel, speed: f64) -> Result<PoleSet, LinalgError>
         rotor,
         internal,
         expected_rotor: 2 * model.rotor_dofs(),
+        doubled,
     })
+}
+
+/// The pole `s` of the state model `m` with the state eigenvector `z = [v, x, y]`, as a pole
+/// set reports it before choosing mirror members (doubled: `doubled`).
+pub fn pole_of_state(s: c64, z: &[c64], m: &StateModel, doubled: bool) -> Pole {
+    let n = m.n();
+    pole(s, z[n..2 * n].to_vec(), z[2 * n..].to_vec(), m, doubled).0
 }
 
 /// How much more a doubled pole's shape is in `r` than in `conj r`, in [-1, 1] (for an

@@ -2,21 +2,25 @@
 //! point of the numerics for the service (which converts the outcome to wire types).
 
 use super::AnalysisError;
+use super::audit::cases::{self, Assessment, Case};
 use super::audit::critical_map::{self, CriticalMap};
 use super::audit::frequency::{self, Excitation};
 use super::audit::level1::{self, ForwardPole, Level1};
 use super::audit::peaks::{self, Peak};
+use super::audit::placement::{self, Profile};
 use super::audit::statics::{self, Held, StaticResult};
 use super::campbell::{self, CampbellResult};
 use super::control::Control;
+use super::criticals::Critical;
 use super::modal::{self, ModalResult};
+use super::poles::Whirl;
 use super::stability::{self, Threshold};
 use super::time::{self, TimeError, TimeResult};
 use super::unbalance::{self, Orbit, SteadyUnbalance};
 use crate::damping::report::{self, ModelMatrices, ReportError};
 use crate::damping::{DampedModel, DampingError};
 use crate::fem::modal::ModalError;
-use crate::model::task::{Model, Task, TaskKind};
+use crate::model::task::{MAX_CASES, Model, ReportPlan, Task, TaskKind};
 use crate::model::{Invalid, rotor::Rotor};
 use crate::system::RotorSystem;
 
@@ -61,6 +65,10 @@ pub enum Outcome {
         result: Level1,
         /// q_A and the first forward mode there.
         qa: Option<(f64, ForwardPole)>,
+        /// The first critical speed on rigid supports (beam rotors), rad/s.
+        rigid: Option<f64>,
+        /// The machine's mean gas density, kg/m^3.
+        density: Option<f64>,
         model: &'static str,
     },
     Frequency {
@@ -72,8 +80,21 @@ pub enum Outcome {
         model: &'static str,
     },
     /// The report's parts, in the order of its plan: map, static, Campbell, unbalance, then
-    /// per compared model its Campbell, Level I and unbalance.
-    Report(Vec<Outcome>),
+    /// per compared model its Campbell, Level I and unbalance; and its unbalance cases.
+    Report {
+        parts: Vec<Outcome>,
+        cases: Vec<CaseOutcome>,
+    },
+}
+
+/// One of the report's unbalance cases, run.
+#[derive(Debug, Clone)]
+pub struct CaseOutcome {
+    pub case: Case,
+    pub shape: Vec<Profile>,
+    /// An [`Outcome::Unbalance`].
+    pub response: Box<Outcome>,
+    pub assessment: Assessment,
 }
 
 /// Why a valid request could not be analysed.
@@ -152,18 +173,19 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                 Some(n) => campbell::lowest_bound(&damped, speeds[0], *n)?.min(*max_frequency),
                 None => *max_frequency,
             };
-            let mut r = campbell::campbell_below(
+            let keep = campbell::Keep {
+                below: bound,
+                lowest: *modes,
+            };
+            let r = campbell::campbell_below(
                 &system,
                 &model.damping,
                 &damped,
                 speeds,
-                bound,
+                keep,
                 *reduce,
                 control,
             )?;
-            if let Some(n) = modes {
-                r.keep_lowest(*n);
-            }
             Ok(Outcome::Campbell(r))
         }
         TaskKind::Stability { model, speeds } => {
@@ -310,6 +332,7 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
             at,
             qs,
             qa,
+            density,
         } => {
             let system = assemble(model)?;
             let placing: Vec<(usize, f64)> = at
@@ -327,9 +350,13 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
             let qa = match qa {
                 Some(q) => Some((
                     *q,
-                    level1::first_forward(&system, &model.damping, *speed, &placing, *q)?,
+                    level1::FirstForward::new(&system, &model.damping, *speed, &placing)?.at(*q)?,
                 )),
                 None => None,
+            };
+            let rigid = match &model.rotor {
+                Rotor::Beam(b) => Some(critical_map::rigid_first(b)?),
+                _ => None,
             };
             Ok(Outcome::Level1 {
                 speed: *speed,
@@ -337,6 +364,8 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                 qs,
                 result,
                 qa,
+                rigid,
+                density: *density,
                 model: model.damping.name(),
             })
         }
@@ -384,7 +413,8 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                     parts.push(run(&m.unbalance, control)?);
                 }
             }
-            Ok(Outcome::Report(parts))
+            let cases = report_cases(plan, &parts[1], &parts[2], control)?;
+            Ok(Outcome::Report { parts, cases })
         }
     }
 }
@@ -395,4 +425,98 @@ fn rigid_body(e: AnalysisError, rotor: &Rotor) -> RunError {
         AnalysisError::Damping(d) => damping_error(d, rotor),
         e => e.into(),
     }
+}
+
+/// The report's unbalance cases (see [`cases`]): one per forward critical speed of its
+/// Campbell diagram, the lowest [`MAX_CASES`], under the report's damping model.
+fn report_cases(
+    plan: &ReportPlan,
+    statics: &Outcome,
+    campbell: &Outcome,
+    control: &Control,
+) -> Result<Vec<CaseOutcome>, RunError> {
+    let (
+        Outcome::Static {
+            result, gravity, ..
+        },
+        Outcome::Campbell(c),
+        TaskKind::Unbalance {
+            model,
+            speeds,
+            range,
+            ..
+        },
+    ) = (statics, campbell, &plan.unbalance.kind)
+    else {
+        return Err(RunError::Unsolvable("report: parts out of order".into()));
+    };
+    let Rotor::Beam(rotor) = &model.rotor else {
+        return Ok(vec![]);
+    };
+    let (system, damped) = build(model)?;
+    let rpm = plan.range.1 * 30.0 / std::f64::consts::PI;
+    let journals = cases::journals(result);
+    let bearings: Vec<usize> = journals.iter().map(|j| j.node).collect();
+    let mut forward: Vec<&Critical> = c
+        .criticals
+        .iter()
+        .filter(|k| k.whirl == Whirl::Forward)
+        .collect();
+    forward.sort_by(|a, b| a.speed.total_cmp(&b.speed));
+    let mut out = vec![];
+    for (i, critical) in forward.into_iter().take(MAX_CASES).enumerate() {
+        control.check().map_err(|_| RunError::Cancelled)?;
+        let shape = cases::profile(&system, &damped, critical.speed, critical.pole, result)?;
+        let overhung = |left: bool| cases::overhung_mass(rotor, result, left);
+        let placed = placement::place(&shape, &journals, &overhung, rpm, *gravity);
+        if placed.is_empty() {
+            continue;
+        }
+        let mut nodes: Vec<usize> = placed.iter().map(|p| p.node).collect();
+        nodes.extend(&bearings);
+        nodes.extend(plan.clearances.iter().map(|c| c.0));
+        nodes.retain(|&n| cases::translation_of(&system, n).is_some());
+        nodes.sort_unstable();
+        nodes.dedup();
+        let task = Task {
+            kind: TaskKind::Unbalance {
+                model: model.clone(),
+                speeds: speeds.clone(),
+                unbalances: placed.iter().map(|p| (p.node, p.amount, p.phase)).collect(),
+                nodes: nodes.clone(),
+                range: *range,
+            },
+            cost: plan.unbalance.cost,
+            warnings: vec![],
+        };
+        let response = run(&task, control)?;
+        let Outcome::Unbalance {
+            response: orbits, ..
+        } = &response
+        else {
+            return Err(RunError::Unsolvable(
+                "report: a case without a response".into(),
+            ));
+        };
+        let assessment = cases::assess(
+            speeds.as_slice(),
+            &nodes,
+            orbits,
+            &bearings,
+            &plan.clearances,
+            plan.range,
+            rpm,
+        );
+        out.push(CaseOutcome {
+            case: Case {
+                mode: i + 1,
+                critical: critical.clone(),
+                unbalances: placed,
+            },
+            shape,
+            response: Box::new(response),
+            assessment,
+        });
+    }
+    Ok(out)
 }

@@ -6,25 +6,56 @@
 //! `(1 - MAC) + |s_predicted - s| / max(|s_predicted|, |s|)`. An assignment costing more than
 //! [`GATE`] is refused: the branch gets no value at that speed (the hysteretic model leaves
 //! modes undefined near critical speeds) and the pole may start a branch of its own.
+//!
+//! A branch is a mode, not a sign of frequency. In doubled coordinates each mode is the mirror
+//! pair `(s, conj s)`, and the member a pole set reports (the one whose `r` part is the larger)
+//! changes from `s` to `conj s` where the whirl ratio of a nearly planar mode passes through
+//! zero: the reported frequency changes sign and the shape swaps its halves. Branches are
+//! therefore matched on the member with `omega >= 0` (continuous through that point), and keep
+//! at each speed the member the pole set reported, with its whirl ratio.
+//!
+//! Where the assignment chosen and the swap of two of its branches cost nearly the same (two
+//! branches veering or crossing with similar shapes), the hand-over is ambiguous: it is
+//! recorded, not guessed silently.
 
-use super::poles::PoleSet;
+use super::poles::{Pole, PoleSet};
 use crate::linalg::{self, c64};
 
 /// Largest cost of an accepted assignment. A forward and a backward pole of the same shape at
 /// `+-omega` cost 2; the same pole predicted within 50% with the same shape costs < 0.5.
 pub const GATE: f64 = 1.5;
 
+/// A swap of two assigned branches costing at most this much more than the assignment chosen
+/// makes the hand-over ambiguous (costs of a clear continuation are below 0.05).
+pub const AMBIGUOUS: f64 = 0.1;
+
 /// One branch: its pole at each speed, `None` where it has none.
 #[derive(Debug, Clone)]
 pub struct Track {
+    /// The pole as its pole set reported it (see the module docs).
     pub values: Vec<Option<c64>>,
+    /// Its whirl ratio at each speed.
+    pub ratios: Vec<Option<f64>>,
+    /// Its shape at its first speed, as reported.
+    pub shape: Vec<c64>,
+}
+
+/// Two branches (indices into [`Tracker::finish`]'s list) whose hand-over at a speed (index)
+/// was ambiguous.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Ambiguity {
+    pub speed: usize,
+    pub branches: (usize, usize),
 }
 
 struct State {
+    /// Shape of the matched (`omega >= 0` when mirrored) member at the last speed.
     shape: Vec<c64>,
     last: (f64, c64),
     before: Option<(f64, c64)>,
     values: Vec<Option<c64>>,
+    ratios: Vec<Option<f64>>,
+    first_shape: Vec<c64>,
 }
 
 impl State {
@@ -45,6 +76,18 @@ pub struct Tracker {
     branches: Vec<State>,
     speeds: usize,
     max_branches: usize,
+    ambiguities: Vec<Ambiguity>,
+}
+
+/// The member of a pole's mirror pair that branches are matched on: itself, or in doubled
+/// coordinates the one with `omega >= 0`.
+fn matched(p: &Pole, doubled: bool) -> (c64, std::borrow::Cow<'_, [c64]>) {
+    if doubled && p.s.im < 0.0 {
+        let m = p.mirror();
+        (m.s, std::borrow::Cow::Owned(m.shape))
+    } else {
+        (p.s, std::borrow::Cow::Borrowed(&p.shape[..]))
+    }
 }
 
 impl Tracker {
@@ -54,6 +97,7 @@ impl Tracker {
             branches: vec![],
             speeds: 0,
             max_branches,
+            ambiguities: vec![],
         }
     }
 
@@ -63,24 +107,25 @@ impl Tracker {
         self.speeds += 1;
         let speed = set.speed;
         let poles = &set.rotor;
+        let m: Vec<(c64, std::borrow::Cow<'_, [c64]>)> =
+            poles.iter().map(|p| matched(p, set.doubled)).collect();
         let branches = &mut self.branches;
         let mut taken = vec![false; poles.len()];
         let mut assigned: Vec<Option<usize>> = vec![None; branches.len()];
         if !branches.is_empty() && !poles.is_empty() {
             let shapes: Vec<&[c64]> = branches.iter().map(|b| &b.shape[..]).collect();
-            let pole_shapes: Vec<&[c64]> = poles.iter().map(|p| &p.shape[..]).collect();
+            let pole_shapes: Vec<&[c64]> = m.iter().map(|p| &p.1[..]).collect();
             let macs = linalg::mac_matrix(&shapes, &pole_shapes);
             let cost: Vec<Vec<f64>> = branches
                 .iter()
                 .zip(&macs)
                 .map(|(b, macs)| {
                     let pred = b.predict(speed);
-                    poles
-                        .iter()
+                    m.iter()
                         .zip(macs)
-                        .map(|(p, mac)| {
-                            let scale = pred.norm().max(p.s.norm()).max(f64::MIN_POSITIVE);
-                            (1.0 - mac) + (pred - p.s).norm() / scale
+                        .map(|((s, _), mac)| {
+                            let scale = pred.norm().max(s.norm()).max(f64::MIN_POSITIVE);
+                            (1.0 - mac) + (pred - s).norm() / scale
                         })
                         .collect()
                 })
@@ -93,49 +138,80 @@ impl Tracker {
                     taken[pi] = true;
                 }
             }
+            self.ambiguities
+                .extend(ambiguous(&cost, &assigned).into_iter().map(|b| Ambiguity {
+                    speed: k,
+                    branches: b,
+                }));
         }
         for (b, a) in branches.iter_mut().zip(&assigned) {
             match a {
                 Some(pi) => {
                     let p = &poles[*pi];
                     b.before = Some(b.last);
-                    b.last = (speed, p.s);
-                    b.shape.clone_from(&p.shape);
+                    b.last = (speed, m[*pi].0);
+                    b.shape.clear();
+                    b.shape.extend_from_slice(&m[*pi].1);
                     b.values.push(Some(p.s));
+                    b.ratios.push(Some(p.whirl_ratio));
                 }
-                None => b.values.push(None),
+                None => {
+                    b.values.push(None);
+                    b.ratios.push(None);
+                }
             }
         }
         for (pi, p) in poles.iter().enumerate() {
             if !taken[pi] && branches.len() < self.max_branches {
                 let mut values = vec![None; k];
                 values.push(Some(p.s));
+                let mut ratios = vec![None; k];
+                ratios.push(Some(p.whirl_ratio));
                 branches.push(State {
-                    shape: p.shape.clone(),
-                    last: (speed, p.s),
+                    shape: m[pi].1.to_vec(),
+                    last: (speed, m[pi].0),
                     before: None,
                     values,
+                    ratios,
+                    first_shape: p.shape.clone(),
                 });
             }
         }
     }
 
-    /// The branches.
-    pub fn finish(self) -> Vec<Track> {
-        self.branches
+    /// The branches, and the ambiguous hand-overs between them.
+    pub fn finish(self) -> (Vec<Track>, Vec<Ambiguity>) {
+        let tracks = self
+            .branches
             .into_iter()
-            .map(|b| Track { values: b.values })
-            .collect()
+            .map(|b| Track {
+                values: b.values,
+                ratios: b.ratios,
+                shape: b.first_shape,
+            })
+            .collect();
+        (tracks, self.ambiguities)
     }
 }
 
-/// Tracks the rotor poles of consecutive pole sets into at most `max_branches` branches.
-pub fn track(sets: &[PoleSet], max_branches: usize) -> Vec<Track> {
-    let mut t = Tracker::new(max_branches);
-    for set in sets {
-        t.push(set);
+/// Pairs of assigned branches whose swap costs at most [`AMBIGUOUS`] more than the choice made
+/// (both swapped assignments within the gate).
+fn ambiguous(cost: &[Vec<f64>], assigned: &[Option<usize>]) -> Vec<(usize, usize)> {
+    let mut out = vec![];
+    for (a, pa) in assigned.iter().enumerate() {
+        let Some(pa) = *pa else { continue };
+        for (b, pb) in assigned.iter().enumerate().skip(a + 1) {
+            let Some(pb) = *pb else { continue };
+            let (swap_a, swap_b) = (cost[a][pb], cost[b][pa]);
+            if swap_a <= GATE
+                && swap_b <= GATE
+                && swap_a + swap_b <= cost[a][pa] + cost[b][pb] + AMBIGUOUS
+            {
+                out.push((a, b));
+            }
+        }
     }
-    t.finish()
+    out
 }
 
 /// Minimum-cost assignment of rows to columns (Hungarian algorithm with potentials,

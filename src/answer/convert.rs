@@ -96,9 +96,43 @@ pub fn campbell(r: &CampbellResult) -> api::CampbellResponse {
                 whirl: whirl(b.whirl),
                 frequency: b.poles.iter().map(|p| p.map(|s| s.im)).collect(),
                 decay_rate: b.poles.iter().map(|p| p.map(|s| s.re)).collect(),
+                log_decrement: b.log_decrement(),
+                damping_ratio: b.damping_ratio(),
+                whirl_ratio: b.whirl_ratio.clone(),
             })
             .collect(),
         critical_speeds: r.critical_speeds.clone(),
+        criticals: r
+            .criticals
+            .iter()
+            .map(|c| api::CriticalSpeed {
+                speed: c.speed,
+                whirl: whirl(c.whirl),
+                mode: c.mode,
+                branch: c.branch,
+                decay_rate: c.pole.re,
+                log_decrement: c.log_decrement(),
+                damping_ratio: c.damping_ratio(),
+                whirl_ratio: c.whirl_ratio,
+                critically_damped: c.critically_damped(),
+            })
+            .collect(),
+        overdamped: r
+            .overdamped
+            .iter()
+            .map(|b| api::OverdampedBranch {
+                decay_rate: b.poles.iter().map(|p| p.map(|s| s.re)).collect(),
+                frequency: b.poles.iter().map(|p| p.map(|s| s.im)).collect(),
+            })
+            .collect(),
+        ambiguities: r
+            .ambiguities
+            .iter()
+            .map(|a| api::Ambiguity {
+                speed: r.speeds[a.speed],
+                branches: [a.branches.0, a.branches.1],
+            })
+            .collect(),
         threshold: r.threshold.as_ref().map(|t| t.speed),
         reduction: r.reduction.as_ref().map(reduction),
     }

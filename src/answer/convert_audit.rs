@@ -3,9 +3,11 @@
 use super::output::Output;
 use crate::analysis::audit::critical_map::CriticalMap;
 use crate::analysis::audit::frequency::Excitation;
-use crate::analysis::audit::level1::{ForwardPole, Level1};
+use crate::analysis::audit::level1::{self, ForwardPole, Level1, MIN_LOG_DEC, MIN_Q_RATIO};
 use crate::analysis::audit::peaks::{self, Peak};
+use crate::analysis::audit::placement::{self, CLEARANCE_FRACTION};
 use crate::analysis::audit::statics::StaticResult;
+use crate::analysis::run::CaseOutcome;
 use crate::analysis::unbalance::Orbit;
 use crate::model::api;
 use crate::model::task::ReportPlan;
@@ -61,18 +63,24 @@ pub fn statics(r: &StaticResult, gravity: f64, rigid: bool) -> api::StaticRespon
                 deflection_x: n.x,
             })
             .collect(),
-        stations: r
-            .stations
-            .iter()
-            .map(|s| api::ShaftStation {
-                element: s.element,
-                position: s.position,
-                shear: s.shear,
-                bending_moment: s.bending_moment,
-            })
-            .collect(),
+        stations: r.stations.iter().map(station).collect(),
+        diagram: r.diagram.iter().map(station).collect(),
+        max_moment: r.max_moment.bending_moment,
+        max_moment_position: r.max_moment.position,
+        max_shear: r.max_shear.shear,
+        max_shear_position: r.max_shear.position,
+        max_shear_element: r.max_shear.element,
         weight: r.weight,
         warnings: vec![],
+    }
+}
+
+fn station(s: &crate::analysis::audit::statics::Station) -> api::ShaftStation {
+    api::ShaftStation {
+        element: s.element,
+        position: s.position,
+        shear: s.shear,
+        bending_moment: s.bending_moment,
     }
 }
 
@@ -81,25 +89,18 @@ fn log_dec(p: &ForwardPole) -> Option<f64> {
     p.map(|(sigma, w)| -2.0 * std::f64::consts::PI * sigma / w)
 }
 
-/// API 617 Level I: the log decrement at q_A at least 0.1 and q0 / q_A at least 2.
-pub const MIN_LOG_DEC: f64 = 0.1;
-pub const MIN_Q_RATIO: f64 = 2.0;
-
 pub fn level1(
     speed: f64,
     at: &[(usize, f64)],
     qs: &[f64],
     r: &Level1,
     qa: Option<(f64, ForwardPole)>,
+    (rigid, density): (Option<f64>, Option<f64>),
     model: &str,
 ) -> api::Level1Response {
     let at_qa = qa.and_then(|(_, p)| log_dec(&p));
-    let ratio = match (r.q0, qa) {
-        (Some(q0), Some((qa, _))) if qa > 0.0 => Some(q0 / qa),
-        _ => None,
-    };
-    let passes = qa
-        .map(|_| at_qa.is_some_and(|d| d >= MIN_LOG_DEC) && ratio.is_none_or(|x| x >= MIN_Q_RATIO));
+    let csr = rigid.filter(|w| *w > 0.0).map(|w| speed / w);
+    let screen = qa.map(|(q, _)| level1::screen(r.q0, q, at_qa, csr, density));
     api::Level1Response {
         speed,
         nodes: at.iter().map(|a| a.0).collect(),
@@ -112,8 +113,13 @@ pub fn level1(
         q0: r.q0,
         qa: qa.map(|q| q.0),
         log_decrement_at_qa: at_qa,
-        ratio,
-        passes,
+        ratio: screen.as_ref().and_then(|s| s.ratio),
+        passes: screen.as_ref().map(|s| s.reasons.is_empty()),
+        level2_required: screen.as_ref().map(|s| !s.reasons.is_empty()),
+        level2_reasons: screen.as_ref().map_or(vec![], |s| s.reasons.clone()),
+        rigid_critical_speed: rigid,
+        critical_speed_ratio: csr,
+        region: screen.as_ref().and_then(|s| s.region.map(String::from)),
         model: model.into(),
         warnings: vec![],
     }
@@ -161,7 +167,10 @@ pub fn peaks(p: &[Peak], range: Option<(f64, f64)>) -> Vec<api::ResponsePeak> {
             api::ResponsePeak {
                 speed: p.speed,
                 amplitude: p.amplitude,
+                amplitude_peak_to_peak: 2.0 * p.amplitude,
                 amplification_factor: p.amplification_factor,
+                critically_damped: p.critically_damped(),
+                one_sided: p.one_sided,
                 half_power: p.half_power,
                 separation_margin: m.as_ref().map(|m| m.separation),
                 required_margin: m.as_ref().and_then(|m| m.required),
@@ -176,8 +185,125 @@ fn rpm(w: f64) -> String {
     format!("{:.1} rad/s ({:.0} rpm)", w, w * RPM)
 }
 
-/// The report from its parts (in the plan's order) and its plan.
-pub fn report(parts: Vec<Output>, plan: &ReportPlan) -> Result<api::ReportResponse, String> {
+/// One unbalance case, its response already converted.
+pub fn unbalance_case(
+    c: &CaseOutcome,
+    response: api::UnbalanceResponseResponse,
+) -> api::UnbalanceCase {
+    let a = &c.assessment;
+    let top = c.shape.iter().map(|p| p.value.abs()).fold(0.0, f64::max);
+    api::UnbalanceCase {
+        mode: c.case.mode,
+        critical_speed: c.case.critical.speed,
+        log_decrement: c.case.critical.log_decrement(),
+        shape: c
+            .shape
+            .iter()
+            .map(|p| api::ShapePoint {
+                node: p.node,
+                position: p.position,
+                value: if top > 0.0 { p.value / top } else { 0.0 },
+            })
+            .collect(),
+        unbalances: c
+            .case
+            .unbalances
+            .iter()
+            .map(|u| api::PlacedUnbalance {
+                node: u.node,
+                amount: u.amount,
+                phase: u.phase,
+                weight: u.weight,
+                rule: u.rule.name().into(),
+            })
+            .collect(),
+        response,
+        vibration_limit: a.vibration_limit,
+        max_bearing_amplitude: a.a1.map(|x| x.0),
+        max_bearing_amplitude_node: a.a1.map(|x| x.1),
+        max_bearing_amplitude_speed: a.a1.map(|x| x.2),
+        within_vibration_limit: a.a1.map(|x| x.0 <= a.vibration_limit),
+        scale_factor: a.scale_factor,
+        clearances: a
+            .clearances
+            .iter()
+            .map(|k| api::ClearanceResult {
+                node: k.node,
+                diametral: k.diametral,
+                scaled_amplitude: k.scaled,
+                speed: k.speed,
+                limit: CLEARANCE_FRACTION * k.diametral,
+                passes: k.passes,
+            })
+            .collect(),
+    }
+}
+
+/// The checks of the unbalance cases: separation margins of their peaks at the nodes they
+/// load, the vibration limit at the bearings, the clearances.
+fn case_checks(cases: &[api::UnbalanceCase], model: &str, checks: &mut Vec<api::ReportCheck>) {
+    for c in cases {
+        let loaded: Vec<usize> = c.unbalances.iter().map(|u| u.node).collect();
+        let mode = format!("mode {} ({})", c.mode, rpm(c.critical_speed));
+        for node in c.response.nodes.iter().filter(|n| loaded.contains(&n.node)) {
+            for p in &node.peaks {
+                let Some(passes) = p.passes else { continue };
+                checks.push(api::ReportCheck {
+                    check: format!(
+                        "{mode}: separation margin of the peak at {} (node {})",
+                        rpm(p.speed),
+                        node.node
+                    ),
+                    model: model.into(),
+                    value: match p.amplification_factor {
+                        Some(af) => {
+                            format!("AF {af:.2}, SM {:.1} %", p.separation_margin.unwrap_or(0.0))
+                        }
+                        None => "AF undefined".into(),
+                    },
+                    requirement: match p.required_margin {
+                        Some(r) => format!("SM >= {r:.1} % (API 684)"),
+                        None => "none: AF < 2.5 (API 684)".into(),
+                    },
+                    passes,
+                });
+            }
+        }
+        if let (Some(a1), Some(node)) = (c.max_bearing_amplitude, c.max_bearing_amplitude_node) {
+            checks.push(api::ReportCheck {
+                check: format!("{mode}: vibration at the bearings in the operating range"),
+                model: model.into(),
+                value: format!("{:.2} um pk-pk at node {node}", a1 * 1e6),
+                requirement: format!("<= Avl = {:.2} um pk-pk (API 617)", c.vibration_limit * 1e6),
+                passes: a1 <= c.vibration_limit,
+            });
+        }
+        for k in &c.clearances {
+            checks.push(api::ReportCheck {
+                check: format!("{mode}: clearance at node {}", k.node),
+                model: model.into(),
+                value: format!(
+                    "{:.1} um pk-pk scaled by Scc {:.2}",
+                    k.scaled_amplitude * 1e6,
+                    c.scale_factor.unwrap_or(1.0)
+                ),
+                requirement: format!(
+                    "< 75% of {:.1} um = {:.1} um (API 617)",
+                    k.diametral * 1e6,
+                    k.limit * 1e6
+                ),
+                passes: k.passes,
+            });
+        }
+    }
+}
+
+/// The report from its parts (in the plan's order), its plan and its unbalance cases.
+pub fn report(
+    parts: Vec<Output>,
+    plan: &ReportPlan,
+    unbalance_cases: Vec<api::UnbalanceCase>,
+) -> Result<api::ReportResponse, String> {
     let mut it = parts.into_iter();
     let mut next = || it.next().ok_or("report: missing part");
     let Output::CriticalMap(map) = next()? else {
@@ -286,7 +412,20 @@ pub fn report(parts: Vec<Output>, plan: &ReportPlan) -> Result<api::ReportRespon
         }
     }
     let _ = lo;
+    case_checks(
+        &unbalance_cases,
+        campbell_model(&plan.campbell),
+        &mut checks,
+    );
     Ok(api::ReportResponse {
+        unbalance_cases,
+        vibration_limit: placement::vibration_limit(hi * RPM),
+        provenance: Some(api::Provenance {
+            software: env!("CARGO_PKG_NAME").into(),
+            version: env!("CARGO_PKG_VERSION").into(),
+            input_sha256: plan.input_sha256.clone(),
+            generated: humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string(),
+        }),
         rotor: plan.rotor.clone(),
         operating_range: api::OperatingRange { min: lo, max: hi },
         critical_speed_map: map,

@@ -72,8 +72,18 @@ impl Output {
                 qs,
                 result,
                 qa,
+                rigid,
+                density,
                 model,
-            } => Output::Level1(convert_audit::level1(speed, &at, &qs, &result, qa, model)),
+            } => Output::Level1(convert_audit::level1(
+                speed,
+                &at,
+                &qs,
+                &result,
+                qa,
+                (rigid, density),
+                model,
+            )),
             Outcome::Frequency {
                 speed,
                 input,
@@ -89,7 +99,7 @@ impl Output {
                 &response,
                 model,
             )),
-            Outcome::Report(parts) => {
+            Outcome::Report { parts, cases } => {
                 let TaskKind::Report(plan) = &task.kind else {
                     return Err(ApiError::Internal(
                         "a report outcome of another task".into(),
@@ -105,8 +115,17 @@ impl Output {
                         Ok(out)
                     })
                     .collect::<Result<Vec<_>, ApiError>>()?;
+                let cases = cases
+                    .into_iter()
+                    .map(
+                        |c| match Output::of((*c.response).clone(), &plan.unbalance)? {
+                            Output::Unbalance(u) => Ok(convert_audit::unbalance_case(&c, u)),
+                            _ => Err(ApiError::Internal("a case's response".into())),
+                        },
+                    )
+                    .collect::<Result<Vec<_>, ApiError>>()?;
                 Output::Report(Box::new(
-                    convert_audit::report(parts, plan).map_err(ApiError::Internal)?,
+                    convert_audit::report(parts, plan, cases).map_err(ApiError::Internal)?,
                 ))
             }
         })

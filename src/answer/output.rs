@@ -67,7 +67,10 @@ impl Output {
     /// frequency bound); others were bounded when the request was parsed.
     pub(super) fn values(&self) -> u64 {
         match self {
-            Output::Campbell(c) => c.speeds.len() as u64 * (1 + 2 * c.branches.len() as u64),
+            Output::Campbell(c) => {
+                c.speeds.len() as u64
+                    * (1 + 5 * c.branches.len() as u64 + 2 * c.overdamped.len() as u64)
+            }
             _ => 0,
         }
     }

@@ -217,6 +217,31 @@ impl StateModel {
         first
     }
 
+    /// The model whose state matrix is the mean of `self`'s and `other`'s at every speed (same
+    /// structure and table): the hysteretic model with a sign set to 0, from the two models
+    /// with that sign at +1 and -1 (the state matrix is linear in the imaginary stiffness).
+    pub fn mean(&self, other: &StateModel) -> StateModel {
+        debug_assert_eq!(self.points, other.points);
+        let avg = |a: &[CMat], b: &[CMat]| -> Vec<CMat> {
+            a.iter()
+                .zip(b)
+                .map(|(x, y)| {
+                    CMat::from_fn(x.nrows(), x.ncols(), |i, j| (x[(i, j)] + y[(i, j)]) * 0.5)
+                })
+                .collect()
+        };
+        StateModel {
+            points: self.points.clone(),
+            a0: avg(&self.a0, &other.a0),
+            a1: avg(&self.a1, &other.a1),
+            n: self.n,
+            branches: self.branches.clone(),
+            stiffness: CMat::from_fn(self.n, self.n, |i, j| {
+                (self.stiffness[(i, j)] + other.stiffness[(i, j)]) * 0.5
+            }),
+        }
+    }
+
     /// Whether the model changes with the speed beyond `Omega A1`.
     pub fn tabulated(&self) -> bool {
         self.points.len() > 1

@@ -1,8 +1,9 @@
 //! Validated rotors. A value of these types exists only if it is physically valid.
 
-use super::api::{BeamInput, GuyanKeep, JeffcottInput, MatricesInput, RotorInput, SupportInput};
+use super::api::{BeamInput, GuyanKeep, JeffcottInput, MatricesInput, RotorInput};
 use super::error::{Invalid, finite, loss_factor, non_negative, positive};
-use super::supports::{self, GeneralSupport};
+use super::supports::GeneralSupport;
+pub use super::supports::{Support, parse_supports, support_path};
 use crate::linalg::{self, RMat};
 
 pub use super::limits::Limits;
@@ -125,67 +126,6 @@ pub struct Disk {
     pub transverse_inertia: f64,
 }
 
-/// An isotropic support on a translation.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Support {
-    /// Its position in the request's `supports`.
-    pub index: usize,
-    pub node: usize,
-    pub stiffness: f64,
-    pub damping: f64,
-    pub loss_factor: f64,
-}
-
-/// Validates a rotor's supports: the isotropic ones and those in the general form.
-/// `node_ok` checks a node (a degree of freedom for matrices) and records its error.
-pub fn parse_supports(
-    inputs: &[SupportInput],
-    bad: &mut Invalid,
-    mut node_ok: impl FnMut(&mut Invalid, String, i64) -> Option<usize>,
-) -> (Vec<Support>, Vec<GeneralSupport>) {
-    let mut isotropic = vec![];
-    let mut general = vec![];
-    for (i, s) in inputs.iter().enumerate() {
-        let at = format!("rotor.supports[{i}]");
-        let node = node_ok(bad, format!("{at}.node"), s.node);
-        if supports::is_general(s) {
-            if let (Some(g), Some(_)) = (
-                supports::parse_general(s, i, node.unwrap_or(0), &at, bad),
-                node,
-            ) {
-                general.push(g);
-            }
-            continue;
-        }
-        let Some(stiffness) = s.stiffness else {
-            bad.push(
-                format!("{at}.stiffness"),
-                "needs `stiffness` (the isotropic form) or `kxx`, `kyy`, ... (the general form)",
-            );
-            continue;
-        };
-        let k = bad.check(&format!("{at}.stiffness"), non_negative(stiffness));
-        let c = bad.check(
-            &format!("{at}.damping"),
-            non_negative(s.damping.unwrap_or(0.0)),
-        );
-        let eta = bad.check(
-            &format!("{at}.loss_factor"),
-            loss_factor(s.loss_factor.unwrap_or(0.0)),
-        );
-        if let (Some(node), Some(k), Some(c), Some(eta)) = (node, k, c, eta) {
-            isotropic.push(Support {
-                index: i,
-                node,
-                stiffness: k,
-                damping: c,
-                loss_factor: eta,
-            });
-        }
-    }
-    (isotropic, general)
-}
-
 /// A valid finite-element rotor: element `e` joins nodes `e` and `e + 1`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BeamRotor {
@@ -203,13 +143,17 @@ impl BeamRotor {
     pub fn disks(&self) -> &[Disk] {
         &self.disks
     }
-    /// Isotropic supports (the isotropic form).
+    /// Isotropic supports (the isotropic form), seals among them.
     pub fn supports(&self) -> &[Support] {
         &self.supports
     }
-    /// Supports in the general form.
+    /// Supports in the general form, seals among them.
     pub fn general_supports(&self) -> &[GeneralSupport] {
         &self.general_supports
+    }
+    /// Whether it has seals.
+    pub fn has_seals(&self) -> bool {
+        self.supports.iter().any(|s| s.seal) || self.general_supports.iter().any(|s| s.seal)
     }
     pub fn guyan(&self) -> Option<GuyanKeep> {
         self.guyan
@@ -347,7 +291,7 @@ impl BeamRotor {
         // With no shaft, or a segment's count invalid, the nodes are unknown: check only the
         // sign then.
         let nodes_known = !b.shaft.is_empty() && counts.iter().all(Option::is_some) && !too_many;
-        let node_ok = |bad: &mut Invalid, at: String, node: i64| -> Option<usize> {
+        let mut node_ok = |bad: &mut Invalid, at: String, node: i64| -> Option<usize> {
             if node >= 0 && (!nodes_known || (node as u64) < nodes as u64) {
                 Some(node as usize)
             } else {
@@ -388,7 +332,11 @@ impl BeamRotor {
                 "a rotor needs at least one support (bearing) to hold it",
             );
         }
-        let (supports, general_supports) = parse_supports(&b.supports, &mut bad, node_ok);
+        let (mut supports, mut general_supports) =
+            parse_supports(&b.supports, false, &mut bad, &mut node_ok);
+        let (seals, general_seals) = parse_supports(&b.seals, true, &mut bad, &mut node_ok);
+        supports.extend(seals);
+        general_supports.extend(general_seals);
         bad.into_result(|| BeamRotor {
             elements,
             disks,
@@ -490,7 +438,7 @@ impl MatrixRotor {
                 None
             }
         };
-        let (isotropic, general_supports) = parse_supports(&m.supports, &mut bad, dof_ok);
+        let (isotropic, general_supports) = parse_supports(&m.supports, false, &mut bad, dof_ok);
         let mut stiffness = stiffness;
         let mut c_n = c_n;
         let mut h_n = h_n;

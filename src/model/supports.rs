@@ -11,7 +11,7 @@
 //! linear in the speed, outside them it is held at the end value.
 
 use super::api::{Coefficient, SupportInput};
-use super::error::{Invalid, loss_factor};
+use super::error::{Invalid, loss_factor, non_negative};
 use crate::linalg::c64;
 
 /// Most speeds in one support's table.
@@ -111,8 +111,10 @@ pub enum Law {
 /// A validated support in the general form.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GeneralSupport {
-    /// Its position in the request's `supports`.
+    /// Its position in the request's `supports` (or `seals`).
     pub index: usize,
+    /// A seal (`rotor.seals`): left out of the critical speed map and the static analysis.
+    pub seal: bool,
     pub node: usize,
     pub law: Law,
     /// Its hysteretic stiffness is `loss_factor` times the symmetric part of `K`.
@@ -120,6 +122,11 @@ pub struct GeneralSupport {
 }
 
 impl GeneralSupport {
+    /// Its path in the request: `rotor.supports[i]` or `rotor.seals[i]`.
+    pub fn path(&self) -> String {
+        support_path(self.seal, self.index)
+    }
+
     /// The coefficients at `speed`.
     pub fn at(&self, speed: f64) -> Coefficients {
         match &self.law {
@@ -238,7 +245,7 @@ pub fn is_general(s: &SupportInput) -> bool {
 /// Validates the general form of `s` (at path `at`), its node already checked.
 pub fn parse_general(
     s: &SupportInput,
-    index: usize,
+    (index, seal): (usize, bool),
     node: usize,
     at: &str,
     bad: &mut Invalid,
@@ -327,6 +334,7 @@ pub fn parse_general(
     };
     Some(GeneralSupport {
         index,
+        seal,
         node,
         law,
         loss_factor: eta?,
@@ -354,6 +362,80 @@ pub fn held_warning(path: &str, support: &GeneralSupport, lo: f64, hi: f64) -> O
              their end values"
         )),
     }
+}
+
+/// An isotropic support on a translation.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Support {
+    /// Its position in the request's `supports` (or `seals`).
+    pub index: usize,
+    /// A seal (`rotor.seals`): left out of the critical speed map and the static analysis.
+    pub seal: bool,
+    pub node: usize,
+    pub stiffness: f64,
+    pub damping: f64,
+    pub loss_factor: f64,
+}
+
+/// The request path of support `index` (of `rotor.seals` for a seal).
+pub fn support_path(seal: bool, index: usize) -> String {
+    if seal {
+        format!("rotor.seals[{index}]")
+    } else {
+        format!("rotor.supports[{index}]")
+    }
+}
+
+/// Validates a rotor's supports (or seals): the isotropic ones and those in the general form.
+/// `node_ok` checks a node (a degree of freedom for matrices) and records its error.
+pub fn parse_supports(
+    inputs: &[SupportInput],
+    seal: bool,
+    bad: &mut Invalid,
+    mut node_ok: impl FnMut(&mut Invalid, String, i64) -> Option<usize>,
+) -> (Vec<Support>, Vec<GeneralSupport>) {
+    let mut isotropic = vec![];
+    let mut general = vec![];
+    for (i, s) in inputs.iter().enumerate() {
+        let at = support_path(seal, i);
+        let node = node_ok(bad, format!("{at}.node"), s.node);
+        if is_general(s) {
+            if let (Some(g), Some(_)) = (
+                parse_general(s, (i, seal), node.unwrap_or(0), &at, bad),
+                node,
+            ) {
+                general.push(g);
+            }
+            continue;
+        }
+        let Some(stiffness) = s.stiffness else {
+            bad.push(
+                format!("{at}.stiffness"),
+                "needs `stiffness` (the isotropic form) or `kxx`, `kyy`, ... (the general form)",
+            );
+            continue;
+        };
+        let k = bad.check(&format!("{at}.stiffness"), non_negative(stiffness));
+        let c = bad.check(
+            &format!("{at}.damping"),
+            non_negative(s.damping.unwrap_or(0.0)),
+        );
+        let eta = bad.check(
+            &format!("{at}.loss_factor"),
+            loss_factor(s.loss_factor.unwrap_or(0.0)),
+        );
+        if let (Some(node), Some(k), Some(c), Some(eta)) = (node, k, c, eta) {
+            isotropic.push(Support {
+                index: i,
+                seal,
+                node,
+                stiffness: k,
+                damping: c,
+                loss_factor: eta,
+            });
+        }
+    }
+    (isotropic, general)
 }
 
 #[cfg(test)]
@@ -400,6 +482,7 @@ mod tests {
         };
         let s = GeneralSupport {
             index: 0,
+            seal: false,
             node: 0,
             law: Law::Table {
                 speeds: vec![100.0, 200.0, 400.0],

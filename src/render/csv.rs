@@ -32,19 +32,27 @@ pub fn csv(out: &Output) -> Option<String> {
                 } else {
                     "backward"
                 };
-                s.push_str(&format!(
-                    ",mode{}_{w}_frequency,mode{}_{w}_decay_rate",
-                    b.mode, b.mode
-                ));
+                for q in [
+                    "frequency",
+                    "decay_rate",
+                    "log_decrement",
+                    "damping_ratio",
+                    "whirl_ratio",
+                ] {
+                    s.push_str(&format!(",mode{}_{w}_{q}", b.mode));
+                }
             }
             s.push('\n');
             for (i, w) in c.speeds.iter().enumerate() {
                 s.push_str(&format!("{w}"));
                 for b in &c.branches {
                     s.push_str(&format!(
-                        ",{},{}",
+                        ",{},{},{},{},{}",
                         num(b.frequency[i]),
-                        num(b.decay_rate[i])
+                        num(b.decay_rate[i]),
+                        num(b.log_decrement[i]),
+                        num(b.damping_ratio[i]),
+                        num(b.whirl_ratio[i])
                     ));
                 }
                 s.push('\n');
@@ -121,8 +129,14 @@ pub fn csv(out: &Output) -> Option<String> {
             }
         }
         Output::Static(st) => {
-            s.push_str("node,position,deflection,deflection_x,reaction,reaction_x\n");
-            for n in &st.nodes {
+            s.push_str(
+                "node,position,deflection,deflection_x,reaction,reaction_x,shear_left,\
+                 shear_right,bending_moment\n",
+            );
+            // Shear left and right of a node (it jumps by the node's forces), moment there.
+            let left = |k: usize| st.stations.iter().rfind(|t| t.element + 1 == k);
+            let right = |k: usize| st.stations.iter().find(|t| t.element == k);
+            for (k, n) in st.nodes.iter().enumerate() {
                 let r = st.supports.iter().filter(|r| r.node == n.node);
                 let (ry, rx) = r.fold((None, None), |(y, x), r| {
                     (
@@ -130,14 +144,19 @@ pub fn csv(out: &Output) -> Option<String> {
                         Some(x.unwrap_or(0.0) + r.reaction_x),
                     )
                 });
+                let (l, r) = (left(k), right(k));
+                let moment = r.or(l).map(|t| t.bending_moment);
                 s.push_str(&format!(
-                    "{},{},{},{},{},{}\n",
+                    "{},{},{},{},{},{},{},{},{}\n",
                     n.node,
                     n.position,
                     n.deflection,
                     n.deflection_x,
                     num(ry),
-                    num(rx)
+                    num(rx),
+                    num(l.map(|t| t.shear)),
+                    num(r.map(|t| t.shear)),
+                    num(moment)
                 ));
             }
         }

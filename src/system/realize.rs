@@ -195,6 +195,7 @@ mod tests {
                 at: Placement::Dof(0),
                 support: GeneralSupport {
                     index: 0,
+                    seal: false,
                     node: 0,
                     law: Law::Constant(Coefficients {
                         k,

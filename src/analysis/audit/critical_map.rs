@@ -2,7 +2,8 @@
 //!
 //! The full beam (two complex degrees of freedom per node, never Guyan-reduced) at zero speed,
 //! with every support replaced by the same isotropic undamped spring `k` on its node's
-//! translation (no damping, no support mass, no cross-coupling):
+//! translation (no damping, no support mass, no cross-coupling; seals left out, as API 684 and
+//! ROSS's `run_ucs` do):
 //!
 //! ```text
 //! (K_shaft + k E) phi = w^2 M phi,    E = sum over supports of e_t e_t^T
@@ -24,6 +25,7 @@
 
 use crate::analysis::AnalysisError;
 use crate::analysis::control::Control;
+use crate::analysis::roots::brent;
 use crate::fem::assembly;
 use crate::linalg::{self, RMat};
 use crate::model::rotor::BeamRotor;
@@ -107,6 +109,36 @@ pub fn critical_speed_map(
     })
 }
 
+/// The first undamped natural frequency at rest on rigid supports, rad/s: the shaft and disks
+/// with the translations of every bearing's node held (rotations free; seals left out), the
+/// critical speed API 617's critical speed ratio `MCS / N_c1` is taken on.
+pub fn rigid_first(rotor: &BeamRotor) -> Result<f64, AnalysisError> {
+    let s = assembly::beam_shaft(rotor);
+    let mut held = vec![false; s.n()];
+    for node in rotor
+        .supports()
+        .iter()
+        .filter(|s| !s.seal)
+        .map(|s| s.node)
+        .chain(
+            rotor
+                .general_supports()
+                .iter()
+                .filter(|g| !g.seal)
+                .map(|g| g.node),
+        )
+    {
+        held[2 * node] = true;
+    }
+    let free: Vec<usize> = (0..s.n()).filter(|&i| !held[i]).collect();
+    let pick = |a: &RMat| RMat::from_fn(free.len(), free.len(), |i, j| a[(free[i], free[j])]);
+    let modes = linalg::symmetric_modes(&pick(&s.stiffness_rotating), &pick(&s.mass))?;
+    Ok(modes
+        .omega_squared
+        .first()
+        .map_or(0.0, |w2| w2.max(0.0).sqrt()))
+}
+
 /// The shaft with one spring `k` per support on its translation.
 struct Springs {
     k: RMat,
@@ -122,8 +154,15 @@ impl Springs {
         let dofs = rotor
             .supports()
             .iter()
+            .filter(|s| !s.seal)
             .map(|s| 2 * s.node)
-            .chain(rotor.general_supports().iter().map(|g| 2 * g.node))
+            .chain(
+                rotor
+                    .general_supports()
+                    .iter()
+                    .filter(|g| !g.seal)
+                    .map(|g| 2 * g.node),
+            )
             .collect();
         Springs {
             modes: modes.min(s.n()),
@@ -167,6 +206,7 @@ fn curves(rotor: &BeamRotor) -> Vec<Curve<'_>> {
     let mut out: Vec<Curve> = rotor
         .supports()
         .iter()
+        .filter(|s| !s.seal)
         .map(|s| Curve {
             support: s.index,
             node: s.node,
@@ -174,7 +214,7 @@ fn curves(rotor: &BeamRotor) -> Vec<Curve<'_>> {
             law: Coefficient::Constant(s.stiffness),
         })
         .collect();
-    for g in rotor.general_supports() {
+    for g in rotor.general_supports().iter().filter(|g| !g.seal) {
         let curve = |name, law| Curve {
             support: g.index,
             node: g.node,
@@ -235,7 +275,7 @@ fn on_table(
                     control.check()?;
                     Ok(map.at(k(w))?[m] - w)
                 };
-                let w = brent(h, grid[i], grid[i + 1], g(i), g(i + 1))?;
+                let w = brent(h, (grid[i], grid[i + 1]), (g(i), g(i + 1)), TOL)?;
                 roots.push((k(w), w));
             }
         }
@@ -244,76 +284,4 @@ fn on_table(
         }
     }
     Ok(out)
-}
-
-/// Brent's method on a bracket `[a, b]` with `f(a) f(b) < 0`, to `TOL` relative in `w`.
-fn brent(
-    mut f: impl FnMut(f64) -> Result<f64, AnalysisError>,
-    a: f64,
-    b: f64,
-    fa: f64,
-    fb: f64,
-) -> Result<f64, AnalysisError> {
-    let (mut a, mut b, mut fa, mut fb) = (a, b, fa, fb);
-    let (mut c, mut fc) = (a, fa);
-    let (mut d, mut e) = (b - a, b - a);
-    for _ in 0..200 {
-        if fb * fc > 0.0 {
-            (c, fc) = (a, fa);
-            d = b - a;
-            e = d;
-        }
-        if fc.abs() < fb.abs() {
-            (a, b, c) = (b, c, b);
-            (fa, fb, fc) = (fb, fc, fb);
-        }
-        let tol = 0.5 * TOL * b.abs().max(f64::MIN_POSITIVE) + 2.0 * f64::EPSILON * b.abs();
-        let half = 0.5 * (c - b);
-        if half.abs() <= tol || fb == 0.0 {
-            return Ok(b);
-        }
-        if e.abs() >= tol && fa.abs() > fb.abs() {
-            // Inverse quadratic interpolation, or secant with two points.
-            let s = fb / fa;
-            let (mut p, mut q) = if a == c {
-                (2.0 * half * s, 1.0 - s)
-            } else {
-                let (qa, r) = (fa / fc, fb / fc);
-                (
-                    s * (2.0 * half * qa * (qa - r) - (b - a) * (r - 1.0)),
-                    (qa - 1.0) * (r - 1.0) * (s - 1.0),
-                )
-            };
-            if p > 0.0 {
-                q = -q;
-            }
-            p = p.abs();
-            if 2.0 * p < (3.0 * half * q - (tol * q).abs()).min((e * q).abs()) {
-                e = d;
-                d = p / q;
-            } else {
-                d = half;
-                e = d;
-            }
-        } else {
-            d = half;
-            e = d;
-        }
-        (a, fa) = (b, fb);
-        b += if d.abs() > tol { d } else { tol.copysign(half) };
-        fb = f(b)?;
-    }
-    Ok(b)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn brent_finds_a_root_to_the_tolerance() {
-        let f = |w: f64| Ok(w.cos() - w);
-        let r = brent(f, 0.0, 1.0, 1.0, 1f64.cos() - 1.0).unwrap();
-        assert!((r - 0.7390851332151607).abs() < 1e-10 * r);
-    }
 }

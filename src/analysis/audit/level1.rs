@@ -7,15 +7,17 @@
 //! `q0 = c sqrt(k/m)`. The term is isotropic (skew), so it keeps the rotor's coordinates, and it
 //! stores no energy, so the damping models' modal bases (built on the symmetric parts at rest)
 //! do not change with `q`. The first forward mode is the forward rotor pole of lowest frequency
-//! that oscillates.
+//! that oscillates and is not overdamped, followed by its shape and pole as q grows
+//! ([`FirstForward`]).
 //! `q0`, where its decay rate changes sign, is bracketed on the requested grid (extended by
 //! doubling up to 1000 times its end when the grid stays stable) and refined by the Illinois
 //! method to 1e-9 relative.
 
 use crate::analysis::AnalysisError;
 use crate::analysis::control::Control;
-use crate::analysis::poles::{Whirl, poles_at};
+use crate::analysis::poles::{Pole, Whirl, overdamped, poles_at};
 use crate::damping::DampedModel;
+use crate::linalg::{self, c64};
 use crate::model::damping::DampingModel;
 use crate::model::supports::{Coefficients, GeneralSupport, Law, Matrix2};
 use crate::system::{PlacedSupport, Placement, RotorSystem};
@@ -36,49 +38,188 @@ pub struct Level1 {
 /// Where the cross-coupling acts: `(degree of freedom of the translation, share)`.
 pub type Placing = [(usize, f64)];
 
+/// API 617 Level I: the log decrement at q_A at least 0.1 ...
+pub const MIN_LOG_DEC: f64 = 0.1;
+/// ... and q0 / q_A at least 2 ...
+pub const MIN_Q_RATIO: f64 = 2.0;
+/// ... and, for 2 <= q0 / q_A below this, the machine in Region A.
+pub const REGION_Q_RATIO: f64 = 10.0;
+
+/// API 617's Region A/B boundary of the critical speed ratio against the mean gas density
+/// `rho` (kg/m^3), as ross-report draws it: 2.5 up to 16.53 kg/m^3, then `2.69 - 0.0115 rho`
+/// down to 2.0 at 60 kg/m^3; above 60 kg/m^3 no critical speed ratio is in Region A (0).
+pub fn region_boundary(rho: f64) -> f64 {
+    if rho <= 16.53 {
+        2.5
+    } else if rho <= 60.0 {
+        2.69 - 0.0115 * rho
+    } else {
+        0.0
+    }
+}
+
+/// The Level I verdict of a machine.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Screen {
+    pub ratio: Option<f64>,
+    /// `'A'` or `'B'` (with a mean gas density and a critical speed ratio).
+    pub region: Option<char>,
+    /// Why Level II is required; empty when Level I passes.
+    pub reasons: Vec<String>,
+}
+
+/// API 617 Level I on q0, q_A, the log decrement at q_A, the critical speed ratio and the mean
+/// gas density (kg/m^3): Level II is required when q0 / q_A < 2, when the log decrement at
+/// q_A is below 0.1, or when 2 <= q0 / q_A < 10 and the machine is in Region B (or its
+/// region is unknown).
+pub fn screen(
+    q0: Option<f64>,
+    qa: f64,
+    log_dec_at_qa: Option<f64>,
+    csr: Option<f64>,
+    density: Option<f64>,
+) -> Screen {
+    // No q0 (stable up to the search's end): the ratio is beyond every limit.
+    let ratio = q0.map(|q| q / qa);
+    let region = match (csr, density) {
+        (Some(c), Some(rho)) => Some(if c > region_boundary(rho) { 'B' } else { 'A' }),
+        _ => None,
+    };
+    let mut reasons = vec![];
+    if let Some(r) = ratio.filter(|r| *r < MIN_Q_RATIO) {
+        reasons.push(format!("q0 / q_A = {r:.3} is below {MIN_Q_RATIO}"));
+    }
+    match log_dec_at_qa {
+        Some(d) if d < MIN_LOG_DEC => reasons.push(format!(
+            "the log decrement at q_A, {d:.4}, is below {MIN_LOG_DEC}"
+        )),
+        None => reasons.push("the model has no first forward mode at q_A".into()),
+        _ => {}
+    }
+    if let Some(r) = ratio.filter(|r| (MIN_Q_RATIO..REGION_Q_RATIO).contains(r)) {
+        match region {
+            Some('B') => reasons.push(format!(
+                "q0 / q_A = {r:.3} is below {REGION_Q_RATIO} and the critical speed ratio {:.3} \
+                 is in Region B at {:.2} kg/m^3",
+                csr.unwrap_or(0.0),
+                density.unwrap_or(0.0)
+            )),
+            Some(_) => {}
+            None => reasons.push(format!(
+                "q0 / q_A = {r:.3} is below {REGION_Q_RATIO}: the Region A/B screen needs \
+                 machine.mean_gas_density (and a beam rotor for the critical speed ratio)"
+            )),
+        }
+    }
+    Screen {
+        ratio,
+        region,
+        reasons,
+    }
+}
+
 /// Relative tolerance of `q0`.
 const Q_TOL: f64 = 1e-9;
 
-/// The first forward mode of `system` at `speed` with total cross-coupling `q` at `at`.
-pub fn first_forward(
-    system: &RotorSystem,
-    damping: &DampingModel,
+/// The first forward mode of a rotor at one speed, followed as cross-coupling is added.
+///
+/// Without cross-coupling it is the forward rotor pole of lowest frequency that oscillates and
+/// is not overdamped ([`overdamped`]: heavily damped bearings do not whirl, as on the Campbell
+/// diagram). With it, the same mode is the forward pole nearest that reference by the
+/// tracking cost `(1 - MAC) + |s_ref - s| / max(|s_ref|, |s|)`: the lowest forward pole is not
+/// it once q turns the overdamped bearing poles slowly (a log decrement of 600 at 1 rad/s on a
+/// 150 rad/s first mode).
+pub struct FirstForward<'a> {
+    system: &'a RotorSystem,
+    damping: &'a DampingModel,
     speed: f64,
-    at: &Placing,
-    q: f64,
-) -> Result<ForwardPole, AnalysisError> {
-    let mut s = system.clone();
-    if q != 0.0 {
-        for &(dof, w) in at {
-            let k = Matrix2 {
-                xx: 0.0,
-                xy: w * q,
-                yx: -w * q,
-                yy: 0.0,
-            };
-            s.supports.push(PlacedSupport {
-                at: Placement::Dof(dof),
-                support: GeneralSupport {
-                    index: usize::MAX,
-                    node: s.dofs[dof].node,
-                    law: Law::Constant(Coefficients {
-                        k,
-                        ..Coefficients::default()
-                    }),
-                    loss_factor: 0.0,
-                },
-            });
-        }
+    at: &'a Placing,
+    reference: Option<Pole>,
+}
+
+impl<'a> FirstForward<'a> {
+    pub fn new(
+        system: &'a RotorSystem,
+        damping: &'a DampingModel,
+        speed: f64,
+        at: &'a Placing,
+    ) -> Result<Self, AnalysisError> {
+        let mut first = Self {
+            system,
+            damping,
+            speed,
+            at,
+            reference: None,
+        };
+        first.reference = first
+            .candidates(0.0)?
+            .into_iter()
+            .min_by(|a, b| a.frequency().total_cmp(&b.frequency()));
+        Ok(first)
     }
-    let model = DampedModel::build(&s, damping)?;
-    let set = poles_at(&model, speed)?;
-    Ok(set
-        .rotor
-        .iter()
-        // Overdamped poles (heavily damped bearings) do not whirl: not a mode to screen.
-        .filter(|p| p.whirl == Whirl::Forward && p.frequency() > 1e-6 * p.s.norm())
-        .min_by(|a, b| a.frequency().total_cmp(&b.frequency()))
-        .map(|p| (p.decay_rate(), p.frequency())))
+
+    /// Without cross-coupling.
+    pub fn base(&self) -> ForwardPole {
+        self.reference
+            .as_ref()
+            .map(|p| (p.decay_rate(), p.frequency()))
+    }
+
+    /// With total cross-coupling `q`.
+    pub fn at(&self, q: f64) -> Result<ForwardPole, AnalysisError> {
+        let Some(reference) = &self.reference else {
+            return Ok(None);
+        };
+        if q == 0.0 {
+            return Ok(self.base());
+        }
+        let candidates = self.candidates(q)?;
+        let shapes: Vec<&[c64]> = candidates.iter().map(|p| p.shape.as_slice()).collect();
+        let macs = linalg::mac_matrix(&[reference.shape.as_slice()], &shapes);
+        let cost = |(p, mac): (&Pole, &f64)| {
+            (1.0 - mac) + (reference.s - p.s).norm() / reference.s.norm().max(p.s.norm())
+        };
+        Ok(candidates
+            .iter()
+            .zip(&macs[0])
+            .min_by(|a, b| cost(*a).total_cmp(&cost(*b)))
+            .map(|(p, _)| (p.decay_rate(), p.frequency())))
+    }
+
+    /// The forward rotor poles that oscillate and are not overdamped, at `q`.
+    fn candidates(&self, q: f64) -> Result<Vec<Pole>, AnalysisError> {
+        let mut s = self.system.clone();
+        if q != 0.0 {
+            for &(dof, w) in self.at {
+                let k = Matrix2 {
+                    xx: 0.0,
+                    xy: w * q,
+                    yx: -w * q,
+                    yy: 0.0,
+                };
+                s.supports.push(PlacedSupport {
+                    at: Placement::Dof(dof),
+                    support: GeneralSupport {
+                        index: usize::MAX,
+                        seal: false,
+                        node: s.dofs[dof].node,
+                        law: Law::Constant(Coefficients {
+                            k,
+                            ..Coefficients::default()
+                        }),
+                        loss_factor: 0.0,
+                    },
+                });
+            }
+        }
+        let model = DampedModel::build(&s, self.damping)?;
+        let set = poles_at(&model, self.speed)?;
+        Ok(set
+            .rotor
+            .into_iter()
+            .filter(|p| p.whirl == Whirl::Forward && p.oscillates() && !overdamped(p.s))
+            .collect())
+    }
 }
 
 /// `count` values from 0 to twice `q0` (found by growing `q` by 4 from a millionth of the
@@ -96,11 +237,12 @@ pub fn auto_range(
         .map(|i| k[(i, i)].abs())
         .fold(0.0, f64::max)
         .max(1e-300);
+    let first = FirstForward::new(system, damping, speed, at)?;
     let mut q = 1e-6 * scale;
     let mut stop = scale;
     while q < scale {
         control.check()?;
-        match first_forward(system, damping, speed, at, q)? {
+        match first.at(q)? {
             Some((sigma, _)) if sigma >= 0.0 => {
                 stop = 2.0 * q;
                 break;
@@ -123,13 +265,14 @@ pub fn level1(
     control: &Control,
 ) -> Result<Level1, AnalysisError> {
     control.expect(qs.len() as u64 + 40);
+    let first = FirstForward::new(system, damping, speed, at)?;
     let mut eval = |q: f64| -> Result<ForwardPole, AnalysisError> {
         control.check()?;
-        let p = first_forward(system, damping, speed, at, q);
+        let p = first.at(q);
         control.advance(1);
         p
     };
-    let base = eval(0.0)?;
+    let base = first.base();
     let mut curve = Vec::with_capacity(qs.len());
     for &q in qs {
         curve.push(if q == 0.0 { base } else { eval(q)? });

@@ -2,10 +2,13 @@
 //! ([`critical_map`]), static deflection and bearing loads ([`statics`]), the Level I stability
 //! screen ([`level1`]), the non-synchronous frequency response ([`frequency`]) and the
 //! resonance peaks of a response curve with their amplification factors and separation
-//! margins ([`peaks`]).
+//! margins ([`peaks`]). The report's unbalance cases are placed by API 684's rules
+//! ([`placement`]) and run and read against API 617's limits ([`cases`]).
 
+pub mod cases;
 pub mod critical_map;
 pub mod frequency;
 pub mod level1;
 pub mod peaks;
+pub mod placement;
 pub mod statics;

@@ -6,9 +6,12 @@
 //! per call), so that it does not depend on how fine the grid is. Its half-power points
 //! `N_1 < N_c < N_2`, where the amplitude is `A_peak / sqrt 2`, are bracketed on the grid and
 //! refined by Brent's root finding; the amplification factor is `AF = N_c / (N_2 - N_1)`
-//! (API 684), `1 / (2 zeta)` for a lightly damped single mode. A half-power point that the
-//! curve does not reach before it rises above the peak again, or before the grid ends, leaves
-//! the AF undefined.
+//! (API 684), `1 / (2 zeta)` for a lightly damped single mode; the ratio is the same on the
+//! zero-to-peak and the peak-to-peak amplitude. A half-power point that the curve does not
+//! reach before it rises above the peak again, or before the grid ends, is missing: with the
+//! other one the peak is taken as symmetric (`AF = N_c / (2 |N_c - N_i|)`, flagged
+//! `one_sided`); with neither the AF is undefined, as it is for an undamped peak (never
+//! infinite).
 //!
 //! Separation margin of a peak from the operating range `[N_min, N_max]`: below it
 //! `100 (N_min - N_c) / N_min`, above it `100 (N_c - N_max) / N_max` (percent). Required for
@@ -25,9 +28,24 @@ pub struct Peak {
     pub amplitude: f64,
     pub half_power: Option<[f64; 2]>,
     pub amplification_factor: Option<f64>,
+    /// Whether the AF came from one half-power point (the other beyond the sweep or hidden by
+    /// a neighbouring peak), the peak taken as symmetric.
+    pub one_sided: bool,
     /// Whether it was refined on the response (else interpolated linearly on the grid).
     pub refined: bool,
 }
+
+impl Peak {
+    /// API 684: a mode with `AF < 2.5` is critically damped (it needs no separation margin);
+    /// unknown without an AF.
+    pub fn critically_damped(&self) -> Option<bool> {
+        self.amplification_factor
+            .map(|af| af < CRITICALLY_DAMPED_AF)
+    }
+}
+
+/// API 684's amplification factor below which a mode is critically damped.
+pub const CRITICALLY_DAMPED_AF: f64 = 2.5;
 
 /// Most steady solves one peak's refinement takes (Brent's maximisation and two roots, each
 /// well under 40 steps at 1e-10).
@@ -87,24 +105,37 @@ pub fn peaks(
         let right = (i + 1..n)
             .take_while(|&j| amplitude[j] <= peak)
             .find(|&j| amplitude[j] <= target);
-        let half = match (left, right) {
-            (Some(l), Some(r)) => {
+        let n1 = match left {
+            Some(l) => {
                 let l_hi = if l + 1 == i { speed } else { speeds[l + 1] };
-                let r_lo = if r - 1 == i { speed } else { speeds[r - 1] };
-                let n1 = crossing(speeds[l], l_hi, target, eval)?;
-                let n2 = crossing(r_lo, speeds[r], target, eval)?;
-                Some([n1, n2])
+                Some(crossing(speeds[l], l_hi, target, eval)?)
             }
-            _ => None,
+            None => None,
         };
+        let n2 = match right {
+            Some(r) => {
+                let r_lo = if r - 1 == i { speed } else { speeds[r - 1] };
+                Some(crossing(r_lo, speeds[r], target, eval)?)
+            }
+            None => None,
+        };
+        let half = n1.zip(n2).map(|(a, b)| [a, b]);
+        // One half-power point: the peak taken as symmetric, `AF = N_c / (2 |N_c - N_i|)`.
+        let af = match (n1, n2) {
+            (Some(a), Some(b)) => Some(speed / (b - a)),
+            (Some(x), None) | (None, Some(x)) => Some(speed / (2.0 * (speed - x).abs())),
+            (None, None) => None,
+        }
+        .filter(|af| af.is_finite() && *af > 0.0);
         if refined {
             *budget = budget.saturating_sub(calls.max(SOLVES_PER_PEAK / 4));
         }
         out.push(Peak {
             speed,
             amplitude: peak,
-            amplification_factor: half.map(|[a, b]| speed / (b - a)),
+            amplification_factor: af,
             half_power: half,
+            one_sided: af.is_some() && half.is_none(),
             refined,
         });
     }
@@ -137,7 +168,7 @@ pub fn margin(nc: f64, af: Option<f64>, min: f64, max: f64) -> Margin {
             passes: None,
         };
     };
-    if af < 2.5 {
+    if af < CRITICALLY_DAMPED_AF {
         return Margin {
             separation,
             required: None,

@@ -23,6 +23,10 @@
 //! either plane) is held iff the 4 x 4 `R^T K_sup R` is regular, which for supports whose
 //! symmetric part is positive semidefinite is exactly `K` regular.
 //!
+//! `max_moment` is exact: inside an element the moment is quadratic, so its extreme is at an end
+//! or where the shear changes sign (Example 1's 18.6 N m = w L^2 / 8 at mid-span, between the
+//! nodes); `diagram` samples the exact curves.
+//!
 //! Stations: shear and moment at both ends of every element, from the equilibrium of the part
 //! left of the section (node forces: reactions and disk weights; each element's own weight
 //! `g rho A l`, uniform, at its centre). ROSS's signs: shear = minus the upward forces to the
@@ -81,9 +85,19 @@ pub struct StaticResult {
     pub nodes: Vec<Deflection>,
     /// Both ends of every element, left to right.
     pub stations: Vec<Station>,
+    /// The exact diagrams sampled: [`DIAGRAM_POINTS`] points along every element, ends included.
+    pub diagram: Vec<Station>,
+    /// The largest |bending moment| along the shaft (inside an element where its shear
+    /// vanishes), ROSS's sign.
+    pub max_moment: Station,
+    /// The largest |shear| (at an element's end: it is linear in each).
+    pub max_shear: Station,
     /// Weight of shaft and disks, N.
     pub weight: f64,
 }
+
+/// Points per element of [`StaticResult::diagram`], ends included.
+pub const DIAGRAM_POINTS: usize = 9;
 
 /// The error for a shaft its supports cannot hold: the solve would be singular.
 const UNHELD: AnalysisError = AnalysisError::Linalg(LinalgError::NonFinite);
@@ -104,9 +118,11 @@ pub fn static_deflection(
         Held::Elastic { speed } => speed,
         Held::Rigid => 0.0,
     };
+    // Seals carry no load (API 684, ROSS): left out.
     let supports: Vec<(usize, usize, Matrix2)> = rotor
         .supports()
         .iter()
+        .filter(|s| !s.seal)
         .map(|s| {
             let k = Matrix2 {
                 xx: s.stiffness,
@@ -119,6 +135,7 @@ pub fn static_deflection(
             rotor
                 .general_supports()
                 .iter()
+                .filter(|g| !g.seal)
                 .map(|g| (g.index, g.node, g.at(speed).k)),
         )
         .collect();
@@ -157,27 +174,65 @@ pub fn static_deflection(
     let weight = element_weight.iter().sum::<f64>()
         + gravity * rotor.disks().iter().map(|d| d.mass).sum::<f64>();
     // Left of a section: the upward resultant `up` and its first moment `up_z` about z = 0,
-    // so that the moment of the left part about the section at z is `up z - up_z`.
+    // so that the moment of the left part about the section at z is `up z - up_z`. Inside
+    // element e (from z_e, weight q = w_e / l_e per length) the part of the element left of
+    // the section adds `-q (z - z_e)` to the resultant and `-q (z - z_e)^2 / 2` to the moment:
+    // the shear is linear and the moment quadratic, extreme where the shear vanishes.
     let (mut up, mut up_z) = (0.0, 0.0);
     let mut stations = Vec::with_capacity(2 * rotor.elements().len());
+    let mut diagram = Vec::with_capacity(DIAGRAM_POINTS * rotor.elements().len());
+    let mut max_moment: Option<Station> = None;
     for (e, &we) in element_weight.iter().enumerate() {
         up += force[e];
         up_z += force[e] * z[e];
-        let station = |at: f64, up: f64, up_z: f64| Station {
-            element: e,
-            position: at,
-            shear: -up,
-            bending_moment: -(up * at - up_z),
+        let (z0, l) = (z[e], z[e + 1] - z[e]);
+        let q = if l > 0.0 { we / l } else { 0.0 };
+        let at = |t: f64| {
+            let d = t - z0;
+            Station {
+                element: e,
+                position: t,
+                shear: -(up - q * d),
+                bending_moment: -(up * t - up_z - 0.5 * q * d * d),
+            }
         };
-        stations.push(station(z[e], up, up_z));
+        stations.push(at(z0));
+        for k in 0..DIAGRAM_POINTS {
+            diagram.push(at(z0 + l * k as f64 / (DIAGRAM_POINTS - 1) as f64));
+        }
+        let mut candidates = vec![at(z0), at(z[e + 1])];
+        if q > 0.0 && up > 0.0 && up / q < l {
+            candidates.push(at(z0 + up / q));
+        }
+        for c in candidates {
+            if max_moment
+                .as_ref()
+                .is_none_or(|m| c.bending_moment.abs() > m.bending_moment.abs())
+            {
+                max_moment = Some(c);
+            }
+        }
         up -= we;
         up_z -= we * 0.5 * (z[e] + z[e + 1]);
-        stations.push(station(z[e + 1], up, up_z));
+        stations.push(Station {
+            element: e,
+            position: z[e + 1],
+            shear: -up,
+            bending_moment: -(up * z[e + 1] - up_z),
+        });
     }
+    let max_shear = stations
+        .iter()
+        .max_by(|a, b| a.shear.abs().total_cmp(&b.shear.abs()))
+        .cloned()
+        .expect("a shaft has elements");
     Ok(StaticResult {
         reactions,
         nodes,
         stations,
+        diagram,
+        max_moment: max_moment.expect("a shaft has elements"),
+        max_shear,
         weight,
     })
 }

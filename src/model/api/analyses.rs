@@ -24,8 +24,8 @@ pub struct SweepRequest {
     pub rotor: RotorInput,
     pub damping: DampingInput,
     pub speeds: SpeedsInput,
-    /// Campbell only: report the branches whose |frequency| at their first speed is at most
-    /// this, rad/s (default: all). Stability always considers every pole.
+    /// Campbell only: report the branches whose |frequency| is at most this at some speed of
+    /// the sweep, rad/s (default: all). Stability always considers every pole.
     #[serde(default)]
     pub max_frequency: Option<f64>,
     /// Campbell only: report the `modes` branches of lowest |frequency| at the first speed,
@@ -105,17 +105,77 @@ pub struct ModalResponse {
     pub warnings: Vec<String>,
 }
 
-/// One Campbell branch: the same physical mode followed from speed to speed.
+/// One Campbell branch: the same physical mode followed from speed to speed, whatever its whirl
+/// does (the lower mode of an anisotropic pair turns backward above rest; a nearly planar mode's
+/// whirl ratio may change sign).
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
 pub struct Branch {
-    /// Mode number, 1 = lowest |frequency| at the first speed, counted per whirl direction.
+    /// Mode number: the forward and backward branches of one mode share it (1F and 1B, ...),
+    /// modes numbered by |frequency| where they start.
     pub mode: usize,
+    /// The direction of most of its poles (`whirl_ratio` gives it at each speed).
     pub whirl: Whirl,
-    /// Whirl frequency at each speed, rad/s (negative for backward whirl); null where the
-    /// model defines no pole for this mode.
+    /// Whirl frequency at each speed, rad/s, as `/v1/modal` reports the pole there (negative
+    /// where it whirls backward); null where the model defines no pole for this mode.
     pub frequency: Vec<Option<f64>>,
     /// Decay rate at each speed, 1/s; null where the model defines no pole for this mode.
     pub decay_rate: Vec<Option<f64>>,
+    /// Logarithmic decrement `-2 pi sigma / |omega|` at each speed; null where undefined.
+    #[serde(default)]
+    pub log_decrement: Vec<Option<f64>>,
+    /// Damping ratio `-sigma / |s|` at each speed; null where undefined.
+    #[serde(default)]
+    pub damping_ratio: Vec<Option<f64>>,
+    /// Whirl ratio at each speed, in [-1, 1]: +1 circular forward, -1 circular backward, 0
+    /// planar (always +-1 on isotropic supports); null where undefined.
+    #[serde(default)]
+    pub whirl_ratio: Vec<Option<f64>>,
+}
+
+/// Poles overdamped at every speed of the sweep (`|frequency| <= 0.01 |decay_rate|`, a log
+/// decrement past 628: real at rest, turned slowly at speed by the gyroscopic coupling of a
+/// heavily damped support), followed like branches but not part of the Campbell diagram.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct OverdampedBranch {
+    /// Decay rate at each speed, 1/s; null where it has no pole.
+    pub decay_rate: Vec<Option<f64>>,
+    /// Its residual frequency at each speed, rad/s (round-off at rest).
+    pub frequency: Vec<Option<f64>>,
+}
+
+/// A crossing of a branch with the 1x line (whirl frequency = spin speed), refined by root
+/// finding on the model to 1e-12 relative.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct CriticalSpeed {
+    /// Spin speed, rad/s.
+    pub speed: f64,
+    /// Whirl of the pole at the crossing.
+    pub whirl: Whirl,
+    /// Mode number of the branch.
+    pub mode: usize,
+    /// Index of the branch in `branches`.
+    pub branch: usize,
+    /// Decay rate of the pole there, 1/s.
+    pub decay_rate: f64,
+    /// `-2 pi sigma / |omega|` there.
+    pub log_decrement: Option<f64>,
+    /// `-sigma / |s|` there.
+    pub damping_ratio: f64,
+    /// Whirl ratio there.
+    pub whirl_ratio: f64,
+    /// Damping ratio above 0.2 (API 684's amplification factor `1 / (2 zeta)` below 2.5): a
+    /// critically damped crossing, not a critical speed that needs a separation margin.
+    pub critically_damped: bool,
+}
+
+/// Two branches whose hand-over at a speed the tracking could not tell apart (veering, or a
+/// crossing with similar shapes): the assignment made and the swap cost nearly the same.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct Ambiguity {
+    /// Spin speed, rad/s.
+    pub speed: f64,
+    /// Indices of the two branches in `branches`.
+    pub branches: [usize; 2],
 }
 
 /// Answer of `POST /v1/campbell`.
@@ -123,8 +183,18 @@ pub struct Branch {
 pub struct CampbellResponse {
     pub speeds: Vec<f64>,
     pub branches: Vec<Branch>,
-    /// Speeds where a forward branch crosses the 1x line (frequency = speed), interpolated.
+    /// Speeds where a forward branch crosses the 1x line (frequency = speed) and is not
+    /// critically damped, refined (see `criticals`), ascending.
     pub critical_speeds: Vec<f64>,
+    /// Every crossing of a branch with the 1x line, forward and backward, by speed.
+    #[serde(default)]
+    pub criticals: Vec<CriticalSpeed>,
+    /// Poles overdamped at every speed (not Campbell branches).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub overdamped: Vec<OverdampedBranch>,
+    /// Ambiguous hand-overs between branches (none when every branch was followed clearly).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub ambiguities: Vec<Ambiguity>,
     /// Lowest speed of the range at which a pole has decay_rate > 0, refined by root finding;
     /// null when stable over the whole range.
     pub threshold: Option<f64>,

@@ -143,6 +143,26 @@ pub struct StaticResponse {
     pub nodes: Vec<NodeDeflection>,
     /// Both ends of every element, left to right.
     pub stations: Vec<ShaftStation>,
+    /// The exact shear (linear in each element, the shaft's weight uniform along it) and
+    /// bending moment (quadratic) at 9 points along every element, ends included.
+    #[serde(default)]
+    pub diagram: Vec<ShaftStation>,
+    /// The largest |bending moment| along the shaft, N m (ROSS's sign), found exactly: at an
+    /// element's end or where the shear vanishes inside it.
+    #[serde(default)]
+    pub max_moment: f64,
+    /// Where it is, m.
+    #[serde(default)]
+    pub max_moment_position: f64,
+    /// The largest |shear force|, N (ROSS's sign; at an element's end).
+    #[serde(default)]
+    pub max_shear: f64,
+    /// Where it is, m (the left or right side of a node: `max_shear_element`).
+    #[serde(default)]
+    pub max_shear_position: f64,
+    /// The element whose end carries it.
+    #[serde(default)]
+    pub max_shear_element: usize,
     /// Weight of shaft and disks, N; the reactions balance it.
     pub weight: f64,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -162,9 +182,9 @@ pub struct LinearRange {
     pub count: i64,
 }
 
-/// One stage's data for API 617's anticipated cross-coupling
-/// `q_A = B_c C P / (D_c H_c N) (rho_d / rho_s)` (B_c = 3, C = 9.55; P in kW, N in rpm,
-/// D_c and H_c in mm, q in kN/mm; converted to N/m here).
+/// One stage's data for API 617's anticipated cross-coupling (Wachel's formula)
+/// `q_A = B_c T / (D_c H_c) (rho_d / rho_s)`, `B_c = 3`, with the stage torque `T = P / Omega`
+/// at the Level I speed: in SI, N m / m^2 = N/m (2 MW, 0.4 m, 20 mm at 10,000 rpm: 716 kN/m).
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct StageInput {
@@ -187,6 +207,10 @@ pub struct StageInput {
 #[serde(deny_unknown_fields)]
 pub struct MachineInput {
     pub stages: Vec<StageInput>,
+    /// Mean gas density of the machine, kg/m^3 (suction and discharge averaged): with it the
+    /// critical speed ratio is screened against API 617's Region A/B boundary.
+    #[serde(default)]
+    pub mean_gas_density: Option<f64>,
 }
 
 /// Body of `POST /v1/level1`.
@@ -242,10 +266,32 @@ pub struct Level1Response {
     /// `q0 / qa`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ratio: Option<f64>,
-    /// API 617 Level I: passes when the log decrement at q_A is at least 0.1 and
-    /// q0 / q_A at least 2; else a Level II analysis is required.
+    /// API 617 Level I: passes when no reason in `level2_reasons` applies (the negation of
+    /// `level2_required`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub passes: Option<bool>,
+    /// Whether API 617 requires a Level II analysis (with `machine`): q0 / q_A < 2, or the log
+    /// decrement at q_A below 0.1, or 2 <= q0 / q_A < 10 with the machine in Region B of the
+    /// critical speed ratio against mean gas density (without `mean_gas_density` that screen
+    /// cannot clear it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub level2_required: Option<bool>,
+    /// Why Level II is required (empty when it is not).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub level2_reasons: Vec<String>,
+    /// First undamped critical speed on rigid supports (bearing nodes held, seals left out),
+    /// rad/s (beam rotors).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rigid_critical_speed: Option<f64>,
+    /// API 617's critical speed ratio: `speed` (the maximum continuous speed) over
+    /// `rigid_critical_speed`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub critical_speed_ratio: Option<f64>,
+    /// `A` or `B`: where (mean gas density, critical speed ratio) falls against API 617's
+    /// boundary (CSR 2.5 up to 16.53 kg/m^3, then `2.69 - 0.0115 rho` to 2.0 at 60 kg/m^3;
+    /// above 60 kg/m^3 every machine is in Region B), with `machine.mean_gas_density`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub region: Option<String>,
     pub model: String,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub warnings: Vec<String>,
@@ -354,11 +400,24 @@ pub struct OperatingRange {
 pub struct ResponsePeak {
     /// Speed of the peak (the critical speed N_c), rad/s.
     pub speed: f64,
-    /// Amplitude there, m.
+    /// Amplitude there, m, zero to peak (the orbit's semi-major axis).
     pub amplitude: f64,
-    /// `N_c / (N_2 - N_1)`, the half-power points where the amplitude is `peak / sqrt 2`;
-    /// null when a half-power point lies outside the speeds swept.
+    /// The same peak to peak (twice `amplitude`), as API 617's limits read it, m.
+    #[serde(default)]
+    pub amplitude_peak_to_peak: f64,
+    /// `N_c / (N_2 - N_1)`, the half-power points where the amplitude is `peak / sqrt 2`
+    /// (the same ratio on zero-to-peak and peak-to-peak amplitudes); with one half-power point
+    /// only, `N_c / (2 |N_c - N_i|)` (`one_sided`); null with neither, or for an undamped
+    /// (unbounded) peak.
     pub amplification_factor: Option<f64>,
+    /// AF below 2.5: critically damped in API 684's sense, no separation margin required
+    /// (`required_margin` null); null without an AF.
+    #[serde(default)]
+    pub critically_damped: Option<bool>,
+    /// The AF came from one half-power point (the other outside the sweep or behind a
+    /// neighbouring peak), the peak taken as symmetric.
+    #[serde(default)]
+    pub one_sided: bool,
     /// Half-power speeds `[N_1, N_2]`, rad/s.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub half_power: Option<[f64; 2]>,
@@ -378,94 +437,4 @@ pub struct ResponsePeak {
     /// are read off the grid by linear interpolation.
     #[serde(default)]
     pub refined: bool,
-}
-
-/// Body of `POST /v1/report`.
-#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
-#[serde(deny_unknown_fields)]
-pub struct ReportRequest {
-    /// A beam rotor.
-    pub rotor: RotorInput,
-    /// The model of the detailed plots (Campbell, unbalance); the margins are computed under
-    /// every model in `models` too.
-    pub damping: DampingInput,
-    pub operating_range: OperatingRange,
-    /// Speeds of the Campbell and unbalance sweeps (default 0 to 1.25 x the maximum speed:
-    /// 121 speeds for Campbell, 481 for the unbalance response).
-    #[serde(default)]
-    pub speeds: Option<SpeedsInput>,
-    /// Unbalances (default: API 684's `U = 6350 W / N` g mm at the heaviest disk's node, W the
-    /// rotor's weight in kg and N the maximum continuous speed in rpm, converted to kg m).
-    #[serde(default)]
-    pub unbalances: Option<Vec<SteadyUnbalanceInput>>,
-    /// Nodes of the unbalance response (default: the unbalances' nodes and the supports').
-    #[serde(default)]
-    pub nodes: Option<Vec<i64>>,
-    /// Cross-coupling of the Level I screen (default: 21 values from 0 to about twice q0) and
-    /// where it acts (default: the unbalance node).
-    #[serde(default)]
-    pub cross_coupling: Option<LinearRange>,
-    #[serde(default)]
-    pub cross_coupling_nodes: Option<Vec<i64>>,
-    #[serde(default)]
-    pub machine: Option<MachineInput>,
-    /// Critical speed map stiffness (default 1e5 to 1e10 N/m, 31 values).
-    #[serde(default)]
-    pub stiffness: Option<LogRange>,
-    /// Campbell branches: those below this frequency, rad/s (default 1.5 x the last speed).
-    #[serde(default)]
-    pub max_frequency: Option<f64>,
-    /// Damping models compared side by side (default: hysteretic, equivalent and nonviscous
-    /// built from `damping`'s options where they apply, and viscous).
-    #[serde(default)]
-    pub models: Option<Vec<DampingInput>>,
-}
-
-/// One damping model's margins in the report.
-#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
-pub struct ModelMargins {
-    pub model: String,
-    /// Forward critical speeds in the swept range, rad/s.
-    pub critical_speeds: Vec<f64>,
-    /// Onset speed of instability in the swept range, rad/s.
-    pub threshold: Option<f64>,
-    /// Log decrement of the first forward mode at the maximum continuous speed.
-    pub log_decrement: Option<f64>,
-    /// Level I: cross-coupling at zero log decrement, N/m.
-    pub q0: Option<f64>,
-    /// Unbalance peaks of the first response node (the synchronous models only: the
-    /// hysteretic model's synchronous response equals the others' at `omega = Omega`).
-    pub peaks: Vec<ResponsePeak>,
-}
-
-/// One line of the report's verdict.
-#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
-pub struct ReportCheck {
-    /// What is checked.
-    pub check: String,
-    /// The damping model it was checked under.
-    pub model: String,
-    pub value: String,
-    pub requirement: String,
-    pub passes: bool,
-}
-
-/// Answer of `POST /v1/report` (as JSON; `Accept: text/html` gives the page).
-#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
-pub struct ReportResponse {
-    /// The rotor audited, as given.
-    pub rotor: RotorInput,
-    pub operating_range: OperatingRange,
-    pub critical_speed_map: CriticalSpeedMapResponse,
-    pub static_deflection: StaticResponse,
-    pub campbell: CampbellResponse,
-    pub unbalance: UnbalanceResponseResponse,
-    pub level1: Level1Response,
-    /// The same margins under each damping model.
-    pub models: Vec<ModelMargins>,
-    pub checks: Vec<ReportCheck>,
-    /// The unbalances used, kg m.
-    pub unbalances: Vec<SteadyUnbalanceInput>,
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub warnings: Vec<String>,
 }

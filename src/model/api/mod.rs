@@ -9,11 +9,13 @@
 mod analyses;
 mod audit;
 mod loads;
+mod report;
 mod service;
 
 pub use analyses::*;
 pub use audit::*;
 pub use loads::*;
+pub use report::*;
 pub use service::*;
 
 use serde::{Deserialize, Deserializer, Serialize};
@@ -87,9 +89,15 @@ pub struct BeamInput {
     /// Rigid disks.
     #[serde(default)]
     pub disks: Vec<DiskInput>,
-    /// Nonrotating supports (bearings, seals) on translations: isotropic or general.
+    /// Nonrotating supports (bearings) on translations: isotropic or general.
     #[serde(default)]
     pub supports: Vec<SupportInput>,
+    /// Seals: the same fields as `supports`, acting in every dynamic analysis exactly like a
+    /// support, and left out of the undamped critical speed map and the static analysis (as
+    /// API 684 and ROSS do: a seal's coefficients come from the pressure drop across it, not
+    /// from carrying load).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub seals: Vec<SupportInput>,
     /// Optional Guyan reduction: `{"guyan": "translations"}` keeps the translations and
     /// condenses the rotations.
     #[serde(default)]

@@ -14,8 +14,8 @@ use crate::model::rotor::{BeamRotor, Rotor};
 use crate::model::speeds::{linear, logarithmic};
 use serde_json::Value;
 
-/// API 617's `B_c C` (3 x 9.55) with `P` in kW, `N` in rpm, `D_c`, `H_c` in mm: kN/mm.
-const QA_CONSTANT: f64 = 3.0 * 9.55;
+/// `B_c` of Wachel's anticipated cross-coupling for centrifugal compressor stages (API 617).
+const B_C: f64 = 3.0;
 
 /// Values of an automatic Level I range.
 const AUTO_COUNT: usize = 21;
@@ -135,7 +135,7 @@ impl CriticalSpeedMapRequest {
         let count = stiffness.len();
         let values = (count * (modes as usize + 1)) as u64 + 64;
         Ok(Task {
-            warnings: vec![],
+            warnings: seal_note(&rotor, "the undamped critical speed map"),
             kind: TaskKind::CriticalMap {
                 rotor,
                 stiffness,
@@ -143,6 +143,19 @@ impl CriticalSpeedMapRequest {
             },
             cost: solve_cost(size, count + 16 * modes as usize, values),
         })
+    }
+}
+
+/// The line an answer carries when the rotor's seals were left out of it.
+fn seal_note(rotor: &BeamRotor, analysis: &str) -> Vec<String> {
+    if rotor.has_seals() {
+        vec![format!(
+            "rotor.seals: left out of {analysis}, as API 684 and ROSS do (seals carry no load \
+             and their coefficients are not those of a bearing); they act in every dynamic \
+             analysis"
+        )]
+    } else {
+        vec![]
     }
 }
 
@@ -166,7 +179,7 @@ impl StaticRequest {
         };
         let values = 6 * rotor.nodes() as u64 + 64;
         Ok(Task {
-            warnings: vec![],
+            warnings: seal_note(&rotor, "the static analysis"),
             kind: TaskKind::Static {
                 rotor,
                 gravity: g.expect("validated"),
@@ -208,8 +221,10 @@ fn placing(
                     bad.push("speed", "q_A needs a speed > 0");
                     continue;
                 }
-                // kN/mm to N/m: 1e6.
-                let qa = QA_CONSTANT * (p / 1e3) / ((d * 1e3) * (h * 1e3) * (w * RPM)) * rho * 1e6;
+                // Wachel: q_A = B_c T / (D_c H_c) (rho_d / rho_s), the stage torque T = P / Omega:
+                // W / (rad/s) = N m, over m^2: N/m. (API 617's 9.55 P / N with P in kW and N in
+                // rpm is T in kN m, which over D_c H_c in mm^2 needs a further 1e3 for kN/mm.)
+                let qa = B_C * (p / w) / (d * h) * rho;
                 out.push((n, qa));
             }
         }
@@ -267,6 +282,10 @@ impl Level1Request {
         let model = Model::parse(&self.rotor, &self.damping, limits, bad)?;
         let mut bad = Invalid::default();
         let (at, qa) = placing(self, model.rotor.node_count(), speed, &mut bad);
+        let density = match self.machine.as_ref().and_then(|m| m.mean_gas_density) {
+            Some(rho) => bad.check("machine.mean_gas_density", positive(rho)),
+            None => None,
+        };
         if !bad.is_empty() {
             return Err(bad);
         }
@@ -285,6 +304,7 @@ impl Level1Request {
                 at,
                 qs,
                 qa,
+                density,
             },
             cost: sweep_cost(size, 1, limits, false, values)
                 .with_work(size.eigen_work() * solves as f64),

@@ -23,7 +23,7 @@ mod audit;
 mod loads;
 mod report;
 
-pub use report::{ModelPlan, ReportPlan};
+pub use report::{MAX_CASES, ModelPlan, ReportPlan, SWEEP_OVER_MCS};
 
 /// A validated rotor and damping model.
 #[derive(Debug, Clone)]
@@ -110,7 +110,7 @@ impl Model {
     pub fn warnings(&self, lo: f64, hi: f64) -> Vec<String> {
         let mut out = vec![];
         for s in self.rotor.general_supports() {
-            let path = format!("rotor.supports[{}]", s.index);
+            let path = s.path();
             if let Some(w) = held_warning(&path, s, lo, hi) {
                 out.push(w);
             }
@@ -234,6 +234,8 @@ pub enum TaskKind {
         qs: Vec<f64>,
         /// API 617's anticipated cross-coupling, N/m.
         qa: Option<f64>,
+        /// The machine's mean gas density, kg/m^3 (the Region A/B screen).
+        density: Option<f64>,
     },
     Frequency {
         model: Model,

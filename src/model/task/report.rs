@@ -1,6 +1,7 @@
 //! The report: the audit's analyses planned as tasks, run one after the other.
 
 use super::audit::{RPM, beam};
+use super::loads::node_index;
 use super::{Task, TaskKind};
 use crate::model::api::{
     CriticalSpeedMapRequest, DampingInput, EquivalentInput, Level1Request, LogRange, NoOptions,
@@ -8,6 +9,7 @@ use crate::model::api::{
     StaticSupports, SteadyUnbalanceInput, SweepRequest, UnbalanceResponseRequest,
 };
 use crate::model::error::Invalid;
+use crate::model::error::positive;
 use crate::model::limits::{Cost, Limits};
 use crate::model::rotor::BeamRotor;
 use crate::model::speeds::operating_range;
@@ -26,6 +28,10 @@ pub struct ReportPlan {
     pub unbalances: Vec<SteadyUnbalanceInput>,
     /// Per compared model: its name, Campbell, Level I and unbalance tasks.
     pub models: Vec<ModelPlan>,
+    /// Close-clearance locations `(node, minimum diametral clearance m)`.
+    pub clearances: Vec<(usize, f64)>,
+    /// SHA-256 (hex) of the request written again as compact JSON.
+    pub input_sha256: String,
 }
 
 impl ReportPlan {
@@ -95,7 +101,7 @@ impl ReportRequest {
             .clone()
             .unwrap_or(SpeedsInput::Range(SpeedRange {
                 start: 0.0,
-                stop: 1.25 * hi,
+                stop: SWEEP_OVER_MCS * hi,
                 count: 121,
             }));
         // API 684's unbalance: 6350 W / N g mm at the heaviest disk (or mid-shaft).
@@ -125,7 +131,18 @@ impl ReportRequest {
             .cross_coupling_nodes
             .clone()
             .unwrap_or_else(|| vec![unbalances.first().map_or(0, |u| u.node)]);
-        let max_frequency = self.max_frequency.or(Some(1.5 * 1.25 * hi));
+        let max_frequency = self.max_frequency.or(Some(1.5 * SWEEP_OVER_MCS * hi));
+        let mut bad = Invalid::default();
+        let mut clearances = vec![];
+        for (i, c) in self.clearances.iter().flatten().enumerate() {
+            let at = format!("clearances[{i}]");
+            let node = node_index(&mut bad, format!("{at}.node"), c.node, rotor.nodes());
+            let d = bad.check(&format!("{at}.diametral"), positive(c.diametral));
+            if let (Some(n), Some(d)) = (node, d) {
+                clearances.push((n, d));
+            }
+        }
+        bad.into_result(|| ())?;
         let map = CriticalSpeedMapRequest {
             rotor: self.rotor.clone(),
             stiffness: self.stiffness.clone().unwrap_or(LogRange {
@@ -160,7 +177,7 @@ impl ReportRequest {
             .clone()
             .unwrap_or(SpeedsInput::Range(SpeedRange {
                 start: 0.0,
-                stop: 1.25 * hi,
+                stop: SWEEP_OVER_MCS * hi,
                 count: 481,
             }));
         let unbalance_for = |damping: &DampingInput| {
@@ -218,8 +235,16 @@ impl ReportRequest {
             unbalance,
             unbalances,
             models,
+            clearances,
+            input_sha256: sha256_hex(&serde_json::to_vec(self).unwrap_or_default()),
         };
-        let cost = combined(&plan.run_tasks());
+        let mut cost = combined(&plan.run_tasks());
+        // The unbalance cases, one response each (their nodes are known only when run).
+        for _ in 0..MAX_CASES {
+            cost.work += plan.unbalance.cost.work;
+            cost.response_bytes += plan.unbalance.cost.response_bytes;
+            cost.peak_bytes += plan.unbalance.cost.response_bytes;
+        }
         Task {
             warnings: plan.campbell.warnings.clone(),
             kind: TaskKind::Report(Box::new(plan)),
@@ -227,6 +252,24 @@ impl ReportRequest {
         }
         .bounded(limits, "speeds")
     }
+}
+
+/// The report runs at most this many unbalance cases (the lowest forward critical speeds);
+/// API 684 needs the modes in the operating range and up to the margin above it, rarely more
+/// than three.
+pub const MAX_CASES: usize = 4;
+
+/// The default sweeps reach 1.3 x the maximum continuous speed: API 684's separation margin
+/// above it reaches 26%.
+pub const SWEEP_OVER_MCS: f64 = 1.3;
+
+/// Lower-case hex of the SHA-256 of `bytes`.
+fn sha256_hex(bytes: &[u8]) -> String {
+    use sha2::Digest;
+    sha2::Sha256::digest(bytes)
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect()
 }
 
 /// Mass of shaft and disks, kg.

@@ -3,7 +3,8 @@
 
 use super::svg::{Anchor, Axis, INK, Panel, Stroke, Svg, extent, sig, spread, text_width};
 use super::{COLOURS, Err, RPM, SHADE_HEX, clip, runs, speed_label};
-use crate::model::api::{Branch, CampbellResponse, StabilityResponse, Whirl};
+use crate::model::api::Whirl as ApiWhirl;
+use crate::model::api::{Branch, CampbellResponse, CriticalSpeed, StabilityResponse, Whirl};
 
 const W: f64 = 960.0;
 const LEFT: f64 = 84.0;
@@ -67,7 +68,34 @@ fn end_labels(svg: &mut Svg, p: &Panel, ends: Vec<((f64, f64), String, &str)>) {
     }
 }
 
-/// Branches on `p`, the values of each by `values`; returns the label at each branch's end.
+/// Pieces of a branch where its whirl is one way, each extended to the next piece's first
+/// point (so the line is unbroken where the whirl changes): `(backward, points)`.
+fn whirl_pieces(xs: &[f64], b: &Branch, ys: &[Option<f64>]) -> Vec<(bool, Vec<(f64, f64)>)> {
+    let mut out: Vec<(bool, Vec<(f64, f64)>)> = vec![];
+    let mut open = false;
+    for ((x, y), f) in xs.iter().zip(ys).zip(&b.frequency) {
+        match (y, f) {
+            (Some(y), Some(f)) if y.is_finite() => {
+                let back = *f < 0.0;
+                let pt = (*x, *y);
+                match out.last_mut() {
+                    Some((w, run)) if open && *w == back => run.push(pt),
+                    Some((_, run)) if open => {
+                        run.push(pt);
+                        out.push((back, vec![pt]));
+                    }
+                    _ => out.push((back, vec![pt])),
+                }
+                open = true;
+            }
+            _ => open = false,
+        }
+    }
+    out
+}
+
+/// Branches on `p`, the values of each by `values`, dashed where they whirl backward; returns
+/// the label at each branch's end.
 fn branches<'a>(
     svg: &mut Svg,
     p: &Panel,
@@ -77,24 +105,73 @@ fn branches<'a>(
     let mut ends = vec![];
     for b in &c.branches {
         let color = colour(b.mode);
-        let stroke = Stroke {
-            dash: dash(b.whirl),
-            ..Stroke::solid(color, 2.0)
-        };
-        let rs = runs(&c.speeds, &values(b));
-        for run in &rs {
+        let pieces = whirl_pieces(&c.speeds, b, &values(b));
+        for (back, run) in &pieces {
+            let w = if *back {
+                Whirl::Backward
+            } else {
+                Whirl::Forward
+            };
+            let stroke = Stroke {
+                dash: dash(w),
+                ..Stroke::solid(color, 2.0)
+            };
             svg.path(p, run, stroke, &format!("branch mode-{}", tag(b)));
         }
-        if let Some(last) = rs.last().and_then(|r| r.last()) {
+        if let Some(last) = pieces.last().and_then(|r| r.1.last()) {
             ends.push((*last, tag(b), color));
         }
     }
     ends
 }
 
+/// Where a branch's pole oscillates: not overdamped (`|omega| > 0.01 |sigma|`, as the
+/// analysis classifies poles). A branch overdamped at low speeds (a heavily damped seal's
+/// mode) is drawn on the Campbell diagram only where it whirls.
+fn oscillating(b: &Branch) -> Vec<bool> {
+    b.frequency
+        .iter()
+        .zip(&b.decay_rate)
+        .map(|(f, s)| match (f, s) {
+            (Some(f), Some(s)) => !(*s < 0.0 && f.abs() <= 0.01 * -s),
+            _ => true,
+        })
+        .collect()
+}
+
+/// The overdamped poles' decay rates on `p`, thin, grey and dotted.
+fn overdamped(svg: &mut Svg, p: &Panel, c: &CampbellResponse) {
+    for o in &c.overdamped {
+        for run in runs(&c.speeds, &o.decay_rate) {
+            let st = Stroke::dashed(SYNC, 1.0, "1 3");
+            svg.path(p, &run, st, "overdamped");
+        }
+    }
+}
+
+/// The y range of log decrements: 0 to the largest, clipped like [`decay_range`] when a
+/// heavily damped mode would flatten the lightly damped ones that matter.
+fn log_dec_range(values: &[f64]) -> (f64, f64, Option<f64>) {
+    let mut v: Vec<f64> = values.iter().copied().filter(|x| x.is_finite()).collect();
+    if v.is_empty() {
+        return (0.0, 1.0, None);
+    }
+    v.sort_by(f64::total_cmp);
+    let (lo, hi) = (v[0].min(0.0), v[v.len() - 1].max(0.2));
+    // The lightly damped modes: below the median's three times (at least API 617's 0.1 shown).
+    let typical = (3.0 * v[v.len() / 2]).max(0.3);
+    let (top, clipped) = if hi > 2.0 * typical {
+        (typical, Some(hi))
+    } else {
+        (hi, None)
+    };
+    let span = top - lo;
+    (lo - 0.04 * span, top + 0.06 * span, clipped)
+}
+
 /// [`campbell`] with the operating speeds `shade = [min, max]` (rad/s) shaded.
 pub fn campbell_with(c: &CampbellResponse, shade: Option<[f64; 2]>) -> Result<String, Err> {
-    let mut svg = Svg::new(W as u32, 960);
+    let mut svg = Svg::new(W as u32, 1370);
     let (x0, x1) = extent(c.speeds.iter().copied()).unwrap_or((0.0, 1.0));
     let x = Axis::lin(x0, x1);
     let freqs = c
@@ -106,7 +183,13 @@ pub fn campbell_with(c: &CampbellResponse, shade: Option<[f64; 2]>) -> Result<St
     let rates = c
         .branches
         .iter()
-        .flat_map(|b| b.decay_rate.iter().flatten().copied());
+        .flat_map(|b| b.decay_rate.iter().flatten().copied())
+        .chain(
+            c.overdamped
+                .iter()
+                .flat_map(|o| o.decay_rate.iter().flatten().copied())
+                .filter(|_| c.overdamped.len() < 2 * c.branches.len().max(1)),
+        );
     let (d_lo, d_hi, clipped) = decay_range(rates);
     let shade = clip(shade, x.lo, x.hi);
 
@@ -119,7 +202,11 @@ pub fn campbell_with(c: &CampbellResponse, shade: Option<[f64; 2]>) -> Result<St
     svg.top_axis(&top, RPM, "spin speed [rpm]");
     sync_lines(&mut svg, &top);
     let ends = branches(&mut svg, &top, c, |b| {
-        b.frequency.iter().map(|f| f.map(f64::abs)).collect()
+        b.frequency
+            .iter()
+            .zip(oscillating(b))
+            .map(|(f, o)| f.filter(|_| o).map(f64::abs))
+            .collect()
     });
     end_labels(&mut svg, &top, ends);
     if let Some(t) = c.threshold.filter(|t| x.lo <= *t && *t <= x.hi) {
@@ -130,7 +217,7 @@ pub fn campbell_with(c: &CampbellResponse, shade: Option<[f64; 2]>) -> Result<St
             "threshold",
         );
     }
-    criticals(&mut svg, &top, &c.critical_speeds);
+    criticals(&mut svg, &top, c);
     let mut key: Vec<(String, &str, Option<&str>)> = vec![
         ("forward whirl".into(), INK, None),
         ("backward whirl".into(), INK, Some("9 5")),
@@ -139,8 +226,26 @@ pub fn campbell_with(c: &CampbellResponse, shade: Option<[f64; 2]>) -> Result<St
     if c.branches.iter().any(|b| b.whirl == Whirl::Internal) {
         key.push(("internal".into(), INK, Some("2 4")));
     }
-    if !c.critical_speeds.is_empty() {
-        key.push(("critical speed".into(), INK, Some("dot")));
+    let shown = |w: ApiWhirl, damped: bool| {
+        c.criticals
+            .iter()
+            .any(|x| x.whirl == w && x.critically_damped == damped)
+    };
+    if shown(ApiWhirl::Forward, false) {
+        key.push(("critical speed, forward".into(), INK, Some("dot")));
+    }
+    if shown(ApiWhirl::Backward, false) {
+        key.push(("critical speed, backward".into(), INK, Some("ring")));
+    }
+    if c.criticals.iter().any(|x| x.critically_damped) {
+        key.push((
+            "critically damped crossing (AF < 2.5)".into(),
+            SYNC,
+            Some("small"),
+        ));
+    }
+    if !c.overdamped.is_empty() {
+        key.push(("overdamped poles".into(), SYNC, Some("1 3")));
     }
     if shade.is_some() {
         key.push(("operating range".into(), SHADE_HEX, Some("shade")));
@@ -171,10 +276,11 @@ pub fn campbell_with(c: &CampbellResponse, shade: Option<[f64; 2]>) -> Result<St
         Stroke::solid(INK, 1.0),
         "zero",
     );
-    for &w in &c.critical_speeds {
+    for x in c.criticals.iter().filter(|x| !x.critically_damped) {
         let st = Stroke::dashed(SYNC, 1.0, "4 4");
-        svg.path(&bottom, &[(w, d_lo), (w, d_hi)], st, "critical");
+        svg.path(&bottom, &[(x.speed, d_lo), (x.speed, d_hi)], st, "critical");
     }
+    overdamped(&mut svg, &bottom, c);
     let ends = branches(&mut svg, &bottom, c, |b| b.decay_rate.clone());
     end_labels(&mut svg, &bottom, ends);
     if let Some(t) = c.threshold.filter(|t| x.lo <= *t && *t <= x.hi) {
@@ -195,6 +301,63 @@ pub fn campbell_with(c: &CampbellResponse, shade: Option<[f64; 2]>) -> Result<St
     }
     if let Some(m) = clipped {
         clipped_note(&mut svg, &bottom, m, 6.0);
+    }
+
+    // Log decrement: how engineers read stability margins off a Campbell diagram.
+    let decs: Vec<f64> = c
+        .branches
+        .iter()
+        .flat_map(|b| b.log_decrement.iter().flatten().copied())
+        .collect();
+    let (l_lo, l_hi, l_clipped) = log_dec_range(&decs);
+    let y0 = 968.0 + dy;
+    svg.caption((W / 2.0, y0), "Logarithmic decrement");
+    let third = svg.panel(
+        [LEFT, y0 + 18.0, RIGHT, y0 + 320.0],
+        x,
+        Axis::lin(l_lo, l_hi),
+    );
+    if let Some((lo, hi)) = shade {
+        band(&mut svg, &third, (lo, hi));
+    }
+    svg.axes(&third, "spin speed [rad/s]", "log decrement δ = −2πσ/|ω|");
+    if l_lo <= 0.1 && 0.1 <= l_hi {
+        svg.path(
+            &third,
+            &[(x.lo, 0.1), (x.hi, 0.1)],
+            Stroke::dashed(RED, 1.0, "6 4"),
+            "api617-minimum",
+        );
+        let (px, py) = third.px((x.lo, 0.1));
+        svg.text(
+            (px + 6.0, py - 5.0),
+            "δ = 0.1 (API 617 minimum)",
+            11.0,
+            Anchor::Start,
+            RED,
+        );
+    }
+    let ends = branches(&mut svg, &third, c, |b| {
+        b.log_decrement
+            .iter()
+            .zip(oscillating(b))
+            .map(|(v, o)| v.filter(|v| o && *v <= l_hi))
+            .collect()
+    });
+    end_labels(&mut svg, &third, ends);
+    if let Some(m) = l_clipped {
+        let s = format!(
+            "axis clipped at δ = {} (largest δ: {})",
+            sig(l_hi, 2),
+            sig(m, 3)
+        );
+        svg.text(
+            (third.rect[2], third.rect[1] - 6.0),
+            &s,
+            12.0,
+            Anchor::End,
+            RED,
+        );
     }
     Ok(svg.finish())
 }
@@ -260,22 +423,29 @@ fn sync_lines(svg: &mut Svg, p: &Panel) {
     }
 }
 
-/// A dot at each critical speed on the 1x line, labelled in rad/s and rpm.
-fn criticals(svg: &mut Svg, p: &Panel, speeds: &[f64]) {
-    let pts: Vec<(f64, f64)> = speeds
+/// A mark at each crossing of a branch with the 1x line: forward critical speeds as filled
+/// dots, backward ones as rings, each labelled in rad/s and rpm; critically damped
+/// crossings (AF < 2.5: no separation margin needed) small, grey and unlabelled.
+fn criticals(svg: &mut Svg, p: &Panel, c: &CampbellResponse) {
+    let inside: Vec<&CriticalSpeed> = c
+        .criticals
         .iter()
-        .filter(|w| w.is_finite() && p.contains((**w, **w)))
-        .map(|w| p.px((*w, *w)))
+        .filter(|x| x.speed.is_finite() && p.contains((x.speed, x.speed)))
         .collect();
+    for x in inside.iter().filter(|x| x.critically_damped) {
+        svg.circle_px(p.px((x.speed, x.speed)), 3.0, "#FFFFFF", SYNC);
+    }
+    let marked: Vec<&&CriticalSpeed> = inside.iter().filter(|x| !x.critically_damped).collect();
+    let pts: Vec<(f64, f64)> = marked.iter().map(|x| p.px((x.speed, x.speed))).collect();
     let ys: Vec<f64> = pts.iter().map(|q| q.1 + 16.0).collect();
     let ys = spread(&ys, 15.0, p.rect[1] + 12.0, p.rect[3] - 4.0);
-    for ((q, y), w) in pts.iter().zip(ys).zip(
-        speeds
-            .iter()
-            .filter(|w| w.is_finite() && p.contains((**w, **w))),
-    ) {
-        svg.circle_px(*q, 5.0, INK, "#FFFFFF");
-        let s = speed_label(*w);
+    for ((q, y), x) in pts.iter().zip(ys).zip(&marked) {
+        if x.whirl == ApiWhirl::Backward {
+            svg.circle_px(*q, 5.0, "#FFFFFF", INK);
+        } else {
+            svg.circle_px(*q, 5.0, INK, "#FFFFFF");
+        }
+        let s = speed_label(x.speed);
         let right = q.0 + 10.0 + text_width(&s, 12.0) < p.rect[2];
         let (x, anchor) = if right {
             (q.0 + 8.0, Anchor::Start)

@@ -338,7 +338,7 @@ impl Svg {
     }
 
     /// A boxed key at the top-left corner `at`: text, colour, dashes (a `None` colour: a
-    /// shaded swatch, a colour with `"dot"`: a marker).
+    /// shaded swatch, a colour with `"dot"`, `"ring"` or `"small"`: a marker).
     pub fn key(&mut self, at: (f64, f64), entries: &[(String, &str, Option<&str>)]) {
         if entries.is_empty() {
             return;
@@ -360,6 +360,8 @@ impl Svg {
                     None,
                 ),
                 Some("dot") => self.circle_px((at.0 + 20.0, y), 4.0, color, INK),
+                Some("ring") => self.circle_px((at.0 + 20.0, y), 4.0, "#FFFFFF", color),
+                Some("small") => self.circle_px((at.0 + 20.0, y), 3.0, "#FFFFFF", color),
                 _ => {
                     let mut st = Stroke::solid(color, 2.0);
                     st.dash = *dash;
@@ -399,6 +401,8 @@ impl Svg {
                         self.rect_px([at, yk - 5.0, at + 28.0, yk + 5.0], color, 0.22, None)
                     }
                     Some("dot") => self.circle_px((at + 14.0, yk), 4.0, color, INK),
+                    Some("ring") => self.circle_px((at + 14.0, yk), 4.0, "#FFFFFF", color),
+                    Some("small") => self.circle_px((at + 14.0, yk), 3.0, "#FFFFFF", color),
                     _ => {
                         let mut st = Stroke::solid(color, 2.0);
                         st.dash = dash;

@@ -118,14 +118,14 @@ pub fn critical_speed_map_with(
     Ok(svg)
 }
 
-/// Static deflection (µm or mm) with the support reactions over the bending moment, along the
-/// shaft.
+/// Static deflection (µm or mm) with the support reactions over the bending moment and the
+/// shear force, along the shaft (the exact diagrams, each maximum marked).
 pub fn static_deflection(s: &StaticResponse) -> Result<String, Err> {
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (960, 820)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, (960, 1100)).into_drawing_area();
         root.fill(&WHITE)?;
-        let (top, bottom) = root.split_vertically(450);
+        let (top, bottom) = root.split_vertically(420);
         let xs = s
             .nodes
             .iter()
@@ -178,7 +178,8 @@ pub fn static_deflection(s: &StaticResponse) -> Result<String, Err> {
         labels.block_path(&pixels(&chart, &pts));
         if let Some(p) = pts.iter().min_by(|a, b| a.1.total_cmp(&b.1)) {
             let at = chart.backend_coord(p);
-            let s = format!("max {:.1} {unit} at {:.3} m", p.1.abs(), p.0);
+            // Deflections are known at the nodes only (joined straight here).
+            let s = format!("largest at a node {:.1} {unit} at {:.3} m", p.1.abs(), p.0);
             label(&root, &mut labels, &s, at, PALETTE[0], false)?;
         }
         for r in &s.supports {
@@ -218,45 +219,84 @@ pub fn static_deflection(s: &StaticResponse) -> Result<String, Err> {
             }
         }
 
-        let ms: Vec<(f64, f64)> = s
-            .stations
-            .iter()
-            .filter(|t| t.position.is_finite() && t.bending_moment.is_finite())
-            .map(|t| (t.position, t.bending_moment))
-            .collect();
-        let (m0, m1) = range(ms.iter().map(|p| p.1).chain([0.0]), 0.15);
-        let mut chart = ChartBuilder::on(&bottom)
-            .caption("Bending moment", (FONT, 22))
-            .margin(14)
-            .x_label_area_size(48)
-            .y_label_area_size(84)
-            .build_cartesian_2d(x0..x1, m0..m1)?;
-        chart
-            .configure_mesh()
-            .x_desc("axial position [m]")
-            .y_desc("bending moment [N m]")
-            .x_label_formatter(&lin_tick(x1 - x0))
-            .y_label_formatter(&lin_tick(m1 - m0))
-            .label_style((FONT, TICK))
-            .axis_desc_style((FONT, DESC))
-            .light_line_style(GRID)
-            .draw()?;
-        let area = frame(&root, &chart)?;
-        chart.draw_series(LineSeries::new(
-            [(x0, 0.0), (x1, 0.0)],
-            INK.mix(0.6).stroke_width(1),
-        ))?;
-        chart.draw_series(LineSeries::new(
-            ms.iter().copied(),
-            PALETTE[2].stroke_width(2),
-        ))?;
-        if let Some(p) = ms.iter().max_by(|a, b| a.1.abs().total_cmp(&b.1.abs())) {
-            let at = chart.backend_coord(p);
-            let mut labels = Labels::new(area);
-            labels.block_path(&pixels(&chart, &ms));
-            let s = format!("|M| max {:.1} N m at {:.3} m", p.1.abs(), p.0);
-            chart.draw_series([Circle::new(*p, 4, PALETTE[2].filled())])?;
-            label(&root, &mut labels, &s, at, PALETTE[2], false)?;
+        let along = if s.diagram.is_empty() {
+            &s.stations
+        } else {
+            &s.diagram
+        };
+        let (middle, bottom) = bottom.split_vertically(340);
+        let panels = [
+            (
+                &middle,
+                "Bending moment",
+                "bending moment [N m]",
+                PALETTE[2],
+                (s.max_moment_position, s.max_moment),
+                "|M| max",
+                "N m",
+            ),
+            (
+                &bottom,
+                "Shear force",
+                "shear force [N]",
+                PALETTE[3],
+                (s.max_shear_position, s.max_shear),
+                "|V| max",
+                "N",
+            ),
+        ];
+        for (k, (area_of, caption, desc, colour, max, what, unit)) in panels.into_iter().enumerate()
+        {
+            let value = |t: &crate::model::api::ShaftStation| {
+                if k == 0 { t.bending_moment } else { t.shear }
+            };
+            // One line per element: the shear jumps at nodes with forces.
+            let lines: Vec<Vec<(f64, f64)>> = along
+                .chunk_by(|a, b| a.element == b.element)
+                .map(|c| {
+                    c.iter()
+                        .filter(|t| t.position.is_finite() && value(t).is_finite())
+                        .map(|t| (t.position, value(t)))
+                        .collect()
+                })
+                .collect();
+            let all: Vec<(f64, f64)> = lines.iter().flatten().copied().collect();
+            let (m0, m1) = range(all.iter().map(|p| p.1).chain([0.0]), 0.15);
+            let mut chart = ChartBuilder::on(area_of)
+                .caption(caption, (FONT, 22))
+                .margin(14)
+                .x_label_area_size(48)
+                .y_label_area_size(84)
+                .build_cartesian_2d(x0..x1, m0..m1)?;
+            chart
+                .configure_mesh()
+                .x_desc("axial position [m]")
+                .y_desc(desc)
+                .x_label_formatter(&lin_tick(x1 - x0))
+                .y_label_formatter(&lin_tick(m1 - m0))
+                .label_style((FONT, TICK))
+                .axis_desc_style((FONT, DESC))
+                .light_line_style(GRID)
+                .draw()?;
+            let area = frame(&root, &chart)?;
+            chart.draw_series(LineSeries::new(
+                [(x0, 0.0), (x1, 0.0)],
+                INK.mix(0.6).stroke_width(1),
+            ))?;
+            for line in &lines {
+                chart.draw_series(LineSeries::new(
+                    line.iter().copied(),
+                    colour.stroke_width(2),
+                ))?;
+            }
+            if max.0.is_finite() && max.1.is_finite() {
+                let at = chart.backend_coord(&max);
+                let mut labels = Labels::new(area);
+                labels.block_path(&pixels(&chart, &all));
+                let s = format!("{what} {:.1} {unit} at {:.3} m", max.1.abs(), max.0);
+                chart.draw_series([Circle::new(max, 4, colour.filled())])?;
+                label(&root, &mut labels, &s, at, colour, false)?;
+            }
         }
         root.present()?;
     }
