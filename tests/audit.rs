@@ -539,3 +539,69 @@ async fn level1_on_anisotropic_bearings_agrees_with_a_modal_analysis_at_q0() {
         }
     }
 }
+
+#[tokio::test]
+async fn level2_applies_each_source_alone_then_all_as_level_1_would() {
+    // The 40-element shaft of the Region test; a stage, a seal with cross-coupling only and a
+    // further cross-coupling, all at mid-span (node 20). Each configuration must equal Level I
+    // on the bare rotor at the same total q: 0; the seal's 5000 N/m; q_A = 3 x (10 kW /
+    // 513 rad/s) / (0.3 m x 0.02 m) = 9746.6 N/m; the further 3000 N/m; and their sum.
+    let bare = json!({"type": "beam",
+        "materials": {"steel": {"young_modulus": 2.11e11, "density": 7810.0, "poisson_ratio": 0.3,
+                                "loss_factor": 0.0}},
+        "shaft": [{"length": 2.0, "outer_diameter": 0.05, "inner_diameter": 0.0,
+                   "material": "steel", "elements": 40}],
+        "supports": [{"node": 0, "stiffness": 1e6, "damping": 1e4},
+                     {"node": 40, "stiffness": 1e6, "damping": 1e4}]});
+    let mut rotor = bare.clone();
+    rotor["seals"] = json!([{"node": 20, "kxx": 0.0, "kxy": 5000.0, "kyx": -5000.0, "kyy": 0.0}]);
+    let speed = 513.0;
+    let body = json!({"rotor": rotor, "damping": {"model": "viscous"}, "speed": speed,
+        "machine": {"stages": [{"node": 20, "power": 1e4, "diameter": 0.3, "width": 0.02}],
+                    "additional_cross_coupling": [{"node": 20, "q": 3000.0}]}});
+    let (status, v) = post_json("/v1/level1", &body).await;
+    assert_eq!(status, 200, "{v}");
+    let qa = num(&v["qa"]);
+    assert!((qa - 3.0 * (1e4 / speed) / (0.3 * 0.02)).abs() < 1e-9 * qa);
+    assert!((qa - 9746.6).abs() < 0.1, "{qa}");
+    let l2 = &v["level2"];
+    let sources: Vec<(&str, f64)> = l2["sources"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| (s["source"].as_str().unwrap(), num(&s["log_decrement"])))
+        .collect();
+    println!("{sources:?}");
+    let names: Vec<&str> = sources.iter().map(|s| s.0).collect();
+    assert_eq!(
+        names,
+        [
+            "bearings alone",
+            "seals",
+            "stages' q_A",
+            "additional cross-coupling",
+            "all together"
+        ]
+    );
+    for ((name, d), q) in sources
+        .iter()
+        .zip([0.0, 5000.0, qa, 3000.0, 5000.0 + qa + 3000.0])
+    {
+        let at = json!({"rotor": bare, "damping": {"model": "viscous"}, "speed": speed,
+                        "node": 20, "cross_coupling": {"start": 0.0, "stop": q.max(1.0), "count": 2}});
+        let (_, l) = post_json("/v1/level1", &at).await;
+        let want = if q == 0.0 {
+            num(&l["log_decrement"][0])
+        } else {
+            num(&l["log_decrement"][1])
+        };
+        assert!(
+            (d - want).abs() < 1e-9 * want.abs().max(1e-3),
+            "{name}: {d} vs {want}"
+        );
+    }
+    // Each source lowers the log decrement; together they lower it most.
+    assert!(sources[1..4].iter().all(|s| s.1 < sources[0].1));
+    assert!(sources[4].1 < sources[2].1);
+    assert_eq!(l2["passes"], json!(sources.iter().all(|s| s.1 >= 0.1)));
+}

@@ -350,3 +350,36 @@ fn plots_survive_missing_and_non_finite_values() {
     };
     finite_text(&critical_speed_map(&empty).unwrap());
 }
+
+#[test]
+fn the_bode_plot_puts_the_phase_lag_under_the_amplitude() {
+    // The sample's single mode: phase -atan2(2 zeta wn w, wn^2 - w^2), from 0 to nearly -180
+    // degrees: the panel spans [-180, 0], 0 at its top.
+    let u = unbalance_data();
+    let svg = unbalance_bode(&u, Some([180.0, 300.0])).unwrap();
+    // The plotting areas (the key has a frame too, a small one).
+    let area: Vec<[f64; 4]> = frames(&svg)
+        .into_iter()
+        .filter(|r| r[2] - r[0] > 400.0)
+        .collect();
+    assert_eq!(area.len(), 2, "{area:?}");
+    assert!(area[0][3] < area[1][1], "amplitude above phase");
+    let lines = elements(&svg, "polyline");
+    for (k, n) in u.nodes.iter().enumerate() {
+        let colour = ["#1F77B4", "#D62728", "#2CA02C"][k];
+        let phase: Vec<(f64, f64)> = lines
+            .iter()
+            .filter(|a| a["stroke"] == colour)
+            .map(points)
+            .find(|p| p.iter().all(|&q| inside(&area[1], q)))
+            .unwrap_or_else(|| panic!("node {}: no phase line", n.node));
+        assert_eq!(phase.len(), u.speeds.len());
+        // A lag that only grows: y in pixels never decreases.
+        assert!(phase.windows(2).all(|w| w[1].1 >= w[0].1 - 0.5));
+        let (top, bottom) = (area[1][1], area[1][3]);
+        assert!((phase[0].1 - top).abs() <= 1.5, "0 deg at the top");
+        let last = -n.phase.last().unwrap().to_degrees() / 180.0;
+        assert!((phase.last().unwrap().1 - (top + last * (bottom - top))).abs() <= 1.5);
+    }
+    finite_text(&svg);
+}

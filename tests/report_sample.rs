@@ -383,6 +383,7 @@ pub fn level1_data() -> Level1Response {
         rigid_critical_speed: None,
         critical_speed_ratio: None,
         region: None,
+        level2: None,
         model: "hysteretic".into(),
         warnings: vec![],
     }

@@ -6,6 +6,7 @@ use super::audit::cases::{self, Assessment, Case};
 use super::audit::critical_map::{self, CriticalMap};
 use super::audit::frequency::{self, Excitation};
 use super::audit::level1::{self, ForwardPole, Level1};
+use super::audit::level2;
 use super::audit::peaks::{self, Peak};
 use super::audit::placement::{self, Profile};
 use super::audit::statics::{self, Held, StaticResult};
@@ -69,6 +70,8 @@ pub enum Outcome {
         rigid: Option<f64>,
         /// The machine's mean gas density, kg/m^3.
         density: Option<f64>,
+        /// API 617's Level II, with the machine's data.
+        level2: Option<Vec<(level2::Source, ForwardPole)>>,
         model: &'static str,
     },
     Frequency {
@@ -333,6 +336,7 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
             qs,
             qa,
             density,
+            extra,
         } => {
             let system = assemble(model)?;
             let placing: Vec<(usize, f64)> = at
@@ -358,6 +362,24 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                 Rotor::Beam(b) => Some(critical_map::rigid_first(b)?),
                 _ => None,
             };
+            let level2 = match qa {
+                Some((q, _)) => {
+                    control.check().map_err(|_| RunError::Cancelled)?;
+                    let more: Vec<(usize, f64)> = extra
+                        .iter()
+                        .map(|&(n, q)| (time::translation(&system, n), q))
+                        .collect();
+                    Some(level2::level2(
+                        &system,
+                        &model.damping,
+                        *speed,
+                        &placing,
+                        q,
+                        &more,
+                    )?)
+                }
+                None => None,
+            };
             Ok(Outcome::Level1 {
                 speed: *speed,
                 at: at.clone(),
@@ -366,6 +388,7 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                 qa,
                 rigid,
                 density: *density,
+                level2,
                 model: model.damping.name(),
             })
         }

@@ -4,6 +4,7 @@ use super::output::Output;
 use crate::analysis::audit::critical_map::CriticalMap;
 use crate::analysis::audit::frequency::Excitation;
 use crate::analysis::audit::level1::{self, ForwardPole, Level1, MIN_LOG_DEC, MIN_Q_RATIO};
+use crate::analysis::audit::level2::Source;
 use crate::analysis::audit::peaks::{self, Peak};
 use crate::analysis::audit::placement::{self, CLEARANCE_FRACTION};
 use crate::analysis::audit::statics::StaticResult;
@@ -120,8 +121,29 @@ pub fn level1(
         rigid_critical_speed: rigid,
         critical_speed_ratio: csr,
         region: screen.as_ref().and_then(|s| s.region.map(String::from)),
+        level2: None,
         model: model.into(),
         warnings: vec![],
+    }
+}
+
+/// API 617's Level II in wire form.
+pub fn level2(sources: &[(Source, ForwardPole)]) -> api::Level2Response {
+    let sources: Vec<api::Level2Source> = sources
+        .iter()
+        .map(|(s, p)| {
+            let d = log_dec(p);
+            api::Level2Source {
+                source: s.name().into(),
+                log_decrement: d,
+                frequency: p.map(|x| x.1),
+                passes: d.is_some_and(|d| d >= MIN_LOG_DEC),
+            }
+        })
+        .collect();
+    api::Level2Response {
+        passes: sources.iter().all(|s| s.passes),
+        sources,
     }
 }
 
@@ -398,6 +420,19 @@ pub fn report(
                 requirement: format!(">= {MIN_LOG_DEC}"),
                 passes: l.log_decrement_0.is_some_and(|d| d >= MIN_LOG_DEC),
             }),
+        }
+        if let Some(l2) = &l.level2 {
+            for src in &l2.sources {
+                checks.push(api::ReportCheck {
+                    check: format!("Level II: {} (API 617)", src.source),
+                    model: name.clone(),
+                    value: src
+                        .log_decrement
+                        .map_or("undefined".into(), |d| format!("{d:.3}")),
+                    requirement: format!(">= {MIN_LOG_DEC}"),
+                    passes: src.passes,
+                });
+            }
         }
         models.push(api::ModelMargins {
             model: name,

@@ -74,16 +74,14 @@ impl Output {
                 qa,
                 rigid,
                 density,
+                level2,
                 model,
-            } => Output::Level1(convert_audit::level1(
-                speed,
-                &at,
-                &qs,
-                &result,
-                qa,
-                (rigid, density),
-                model,
-            )),
+            } => Output::Level1({
+                let mut l =
+                    convert_audit::level1(speed, &at, &qs, &result, qa, (rigid, density), model);
+                l.level2 = level2.as_deref().map(convert_audit::level2);
+                l
+            }),
             Outcome::Frequency {
                 speed,
                 input,

@@ -27,7 +27,7 @@ mod sketch;
 pub(crate) use labels::Labels;
 use labels::nearest;
 pub use map::{critical_speed_map, critical_speed_map_with, static_deflection};
-pub use response::{frequency_response, level1, unbalance_with};
+pub use response::{frequency_response, level1, unbalance_bode, unbalance_with};
 pub use shape::mode_shapes;
 pub use sketch::rotor_sketch;
 pub(crate) use sketch::support_stiffness;

@@ -133,109 +133,6 @@ fn td_num(s: &str) -> String {
     format!("<td class=\"num\">{}</td>", escape(s))
 }
 
-/// The model's summary rows (beam rotors in detail).
-fn model_rows(report: &ReportResponse, rotor: &RotorInput) -> Vec<String> {
-    let mut rows = vec![];
-    let mut row =
-        |k: &str, v: String| rows.push(format!("<tr><th>{}</th>{}</tr>", escape(k), td(&v)));
-    match rotor {
-        RotorInput::Beam(b) => {
-            let elements: i64 = b.shaft.iter().map(|s| s.elements.unwrap_or(1).max(1)).sum();
-            let length: f64 = b.shaft.iter().map(|s| s.length).sum();
-            let dmax = b.shaft.iter().map(|s| s.outer_diameter).fold(0.0, f64::max);
-            row(
-                "shaft",
-                format!(
-                    "{} segment{}, {length:.3} m long, up to {:.1} mm in diameter",
-                    b.shaft.len(),
-                    if b.shaft.len() == 1 { "" } else { "s" },
-                    dmax * 1e3
-                ),
-            );
-            row("elements / nodes", format!("{elements} / {}", elements + 1));
-            let names: Vec<&str> = b.materials.keys().map(String::as_str).collect();
-            row("materials", names.join(", "));
-            let mass: f64 = b.disks.iter().map(|d| d.mass).sum();
-            let at: Vec<String> = b
-                .disks
-                .iter()
-                .map(|d| format!("{:.1} kg at node {}", d.mass, d.node))
-                .collect();
-            row(
-                "disks",
-                if b.disks.is_empty() {
-                    "none".into()
-                } else {
-                    format!(
-                        "{} ({}): {}",
-                        b.disks.len(),
-                        num(Some(mass), |m| format!("{m:.1} kg")),
-                        at.join(", ")
-                    )
-                },
-            );
-            let sup: Vec<String> = b
-                .supports
-                .iter()
-                .map(|s| {
-                    format!(
-                        "node {}: {}",
-                        s.node,
-                        super::plot_audit::support_stiffness(s)
-                    )
-                })
-                .collect();
-            row(
-                "supports",
-                format!("{}: {}", b.supports.len(), sup.join("; ")),
-            );
-        }
-        RotorInput::Jeffcott(_) => row("rotor", "Jeffcott rotor".into()),
-        RotorInput::Matrices(_) => row("rotor", "given as matrices".into()),
-    }
-    let s = &report.static_deflection;
-    let kg = if s.gravity > 0.0 {
-        s.weight / s.gravity
-    } else {
-        f64::NAN
-    };
-    row(
-        "total weight",
-        format!(
-            "{} ({})",
-            num(Some(s.weight), |w| format!("{w:.1} N")),
-            num(Some(kg), |m| format!("{m:.2} kg"))
-        ),
-    );
-    let r = report.operating_range;
-    row(
-        "operating range",
-        format!("{} to {}", speed(r.min), speed(r.max)),
-    );
-    let u: Vec<String> = report
-        .unbalances
-        .iter()
-        .map(|u| {
-            format!(
-                "{} g mm at node {} ({:.0}°)",
-                num(Some(u.amount * 1e6), |a| format!("{a:.0}")),
-                u.node,
-                u.phase.to_degrees()
-            )
-        })
-        .collect();
-    row(
-        "unbalance",
-        if u.is_empty() {
-            "—".into()
-        } else {
-            u.join("; ")
-        },
-    );
-    row("damping model of the plots", report.level1.model.clone());
-    rows
-}
-
 fn peak_cells(p: &ResponsePeak) -> String {
     let (class, word) = verdict(p.passes);
     let half = p.half_power.map_or("—".into(), |[a, b]| {
@@ -511,6 +408,27 @@ pub fn html(report: &ReportResponse, rotor: &RotorInput) -> Result<String, Err> 
         ],
         &rows,
     );
+    if let Some(l2) = &l.level2 {
+        o.push_str("<p>Level II (API 617): the first forward mode at the maximum continuous speed with each destabilising source alone, then all together.</p>\n");
+        let rows: Vec<String> = l2
+            .sources
+            .iter()
+            .map(|s| {
+                let (class, word) = verdict(Some(s.passes));
+                format!(
+                    "<tr>{}{}{}<td class=\"{class}\">{word}</td></tr>",
+                    td(&s.source),
+                    td_num(&num(s.log_decrement, |d| format!("{d:.3}"))),
+                    td_num(&num(s.frequency, |f| format!("{:.0}", f * RPM))),
+                )
+            })
+            .collect();
+        table(
+            &mut o,
+            &["configuration", "δ", "frequency [rpm]", "δ ≥ 0.1"],
+            &rows,
+        );
+    }
     figure(
         &mut o,
         &level1(l)?,
@@ -563,8 +481,10 @@ pub fn html(report: &ReportResponse, rotor: &RotorInput) -> Result<String, Err> 
 
 mod cases;
 mod models;
+mod summary;
 use cases::cases_section;
 use models::models_table;
+use summary::model_rows;
 
 #[cfg(test)]
 mod tests {

@@ -211,6 +211,40 @@ pub struct MachineInput {
     /// critical speed ratio is screened against API 617's Region A/B boundary.
     #[serde(default)]
     pub mean_gas_density: Option<f64>,
+    /// Level II: further cross-coupled stiffness (a balance piston, a damper seal's estimate,
+    /// ...), applied alone and with the stages and the seals.
+    #[serde(default)]
+    pub additional_cross_coupling: Option<Vec<CrossCouplingInput>>,
+}
+
+/// Cross-coupled stiffness at a node: `kxy = q`, `kyx = -q`.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct CrossCouplingInput {
+    pub node: i64,
+    /// N/m.
+    pub q: f64,
+}
+
+/// One configuration of API 617's Level II analysis.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct Level2Source {
+    /// `bearings alone`, `seals`, `stages' q_A`, `additional cross-coupling` or `all together`.
+    pub source: String,
+    /// The first forward mode's log decrement at the speed (null where undefined).
+    pub log_decrement: Option<f64>,
+    /// Its whirl frequency, rad/s.
+    pub frequency: Option<f64>,
+    /// Log decrement >= 0.1.
+    pub passes: bool,
+}
+
+/// API 617's Level II analysis: each destabilising source alone, then all together.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct Level2Response {
+    pub sources: Vec<Level2Source>,
+    /// Every configuration keeps a log decrement of at least 0.1.
+    pub passes: bool,
 }
 
 /// Body of `POST /v1/level1`.
@@ -292,6 +326,10 @@ pub struct Level1Response {
     /// above 60 kg/m^3 every machine is in Region B), with `machine.mean_gas_density`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub region: Option<String>,
+    /// API 617's Level II, with `machine`: the first forward mode's log decrement on the
+    /// bearings alone, with each destabilising source alone, and with all together.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub level2: Option<Level2Response>,
     pub model: String,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub warnings: Vec<String>,

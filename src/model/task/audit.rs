@@ -286,6 +286,24 @@ impl Level1Request {
             Some(rho) => bad.check("machine.mean_gas_density", positive(rho)),
             None => None,
         };
+        let mut extra = vec![];
+        let more = self
+            .machine
+            .as_ref()
+            .and_then(|m| m.additional_cross_coupling.as_ref());
+        for (i, c) in more.into_iter().flatten().enumerate() {
+            let at = format!("machine.additional_cross_coupling[{i}]");
+            let n = node_index(
+                &mut bad,
+                format!("{at}.node"),
+                c.node,
+                model.rotor.node_count(),
+            );
+            let q = bad.check(&format!("{at}.q"), finite(c.q));
+            if let (Some(n), Some(q)) = (n, q) {
+                extra.push((n, q));
+            }
+        }
         if !bad.is_empty() {
             return Err(bad);
         }
@@ -305,6 +323,7 @@ impl Level1Request {
                 qs,
                 qa,
                 density,
+                extra,
             },
             cost: sweep_cost(size, 1, limits, false, values)
                 .with_work(size.eigen_work() * solves as f64),

@@ -236,6 +236,8 @@ pub enum TaskKind {
         qa: Option<f64>,
         /// The machine's mean gas density, kg/m^3 (the Region A/B screen).
         density: Option<f64>,
+        /// Level II's further cross-coupling, `(node, q N/m)`; Level II runs with `qa`.
+        extra: Vec<(usize, f64)>,
     },
     Frequency {
         model: Model,

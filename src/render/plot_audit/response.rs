@@ -283,6 +283,90 @@ pub fn unbalance_with(
     {
         let root = SVGBackend::with_string(&mut svg, (960, 600)).into_drawing_area();
         root.fill(&WHITE)?;
+        amplitude(&root, r, shade)?;
+        root.present()?;
+    }
+    Ok(svg)
+}
+
+/// The unbalance response as a Bode plot: [`unbalance_with`]'s amplitudes over the phase of
+/// each node's forward circular part (degrees, relative to the unbalance at phase 0).
+pub fn unbalance_bode(
+    r: &UnbalanceResponseResponse,
+    shade: Option<[f64; 2]>,
+) -> Result<String, Err> {
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (960, 900)).into_drawing_area();
+        root.fill(&WHITE)?;
+        let (top, bottom) = root.split_vertically(600);
+        amplitude(&top, r, shade)?;
+        let (x0, x1) = range(r.speeds.iter().copied(), 0.0);
+        // Unwrapped along speed (a lag passing 180 degrees goes on, as on a Bode plot).
+        let phases: Vec<Vec<(f64, f64)>> = r
+            .nodes
+            .iter()
+            .map(|n| {
+                let mut last: Option<f64> = None;
+                r.speeds
+                    .iter()
+                    .zip(&n.phase)
+                    .filter(|(s, p)| s.is_finite() && p.is_finite())
+                    .map(|(s, p)| {
+                        let mut d = p.to_degrees();
+                        if let Some(l) = last {
+                            d -= 360.0 * ((d - l) / 360.0).round();
+                        }
+                        last = Some(d);
+                        (*s, d)
+                    })
+                    .collect()
+            })
+            .collect();
+        let lo = phases.iter().flatten().map(|p| p.1).fold(0.0, f64::min);
+        let hi = phases.iter().flatten().map(|p| p.1).fold(0.0, f64::max);
+        let (lo, hi) = ((lo / 90.0).floor() * 90.0, (hi / 90.0).ceil() * 90.0);
+        let (lo, hi) = if hi - lo < 90.0 {
+            (lo - 90.0, hi)
+        } else {
+            (lo, hi)
+        };
+        let mut chart = ChartBuilder::on(&bottom)
+            .margin(14)
+            .x_label_area_size(48)
+            .y_label_area_size(84)
+            .build_cartesian_2d(x0..x1, lo..hi)?;
+        chart
+            .configure_mesh()
+            .x_desc("spin speed [rad/s]")
+            .y_desc("phase [deg]")
+            .x_label_formatter(&|v| format!("{v:.0}"))
+            .y_labels(((hi - lo) / 45.0) as usize + 1)
+            .y_label_formatter(&|v| format!("{v:.0}"))
+            .label_style((FONT, TICK))
+            .axis_desc_style((FONT, DESC))
+            .light_line_style(GRID)
+            .draw()?;
+        frame(&root, &chart)?;
+        if let Some((a, b)) = clip(shade, x0, x1) {
+            chart.draw_series([Rectangle::new([(a, lo), (b, hi)], SHADE.filled())])?;
+        }
+        for (k, pts) in phases.iter().enumerate() {
+            let color = PALETTE[k % PALETTE.len()];
+            chart.draw_series(LineSeries::new(pts.iter().copied(), color.stroke_width(2)))?;
+        }
+        root.present()?;
+    }
+    Ok(svg)
+}
+
+/// The amplitude panel of the unbalance response on `root`.
+fn amplitude(
+    root: &Area<'_>,
+    r: &UnbalanceResponseResponse,
+    shade: Option<[f64; 2]>,
+) -> Result<(), Err> {
+    {
         let (x0, x1) = range(r.speeds.iter().copied(), 0.0);
         let max = r
             .nodes
@@ -294,7 +378,7 @@ pub fn unbalance_with(
         let (scale, unit) = length_unit(max);
         let (_, a1) = range([0.0, max * scale].into_iter(), 0.0);
         let a1 = a1 * 1.3;
-        let mut chart = ChartBuilder::on(&root)
+        let mut chart = ChartBuilder::on(root)
             .caption("Unbalance response", (FONT, 22))
             .margin(14)
             .x_label_area_size(48)
@@ -320,11 +404,11 @@ pub fn unbalance_with(
             .axis_desc_style((FONT, DESC))
             .y_labels(0)
             .draw()?;
-        let area = frame(&root, &chart)?;
+        let area = frame(root, &chart)?;
         let mut labels = Labels::new(area);
         let mut entries = vec![];
         if let Some((lo, hi)) = clip(shade, x0, x1) {
-            operating_range(&root, &mut chart, &mut labels, (lo, 0.0), (hi, a1))?;
+            operating_range(root, &mut chart, &mut labels, (lo, 0.0), (hi, a1))?;
         }
         for (k, n) in r.nodes.iter().enumerate() {
             let color = PALETTE[k % PALETTE.len()];
@@ -338,7 +422,7 @@ pub fn unbalance_with(
             chart.draw_series(LineSeries::new(pts, color.stroke_width(2)))?;
             entries.push((format!("node {}", n.node), color, false));
         }
-        let key_box = key(&root, (area[2] - 8, area[1] + 8), &entries)?;
+        let key_box = key(root, (area[2] - 8, area[1] + 8), &entries)?;
         labels.block(key_box);
         let many = r.nodes.iter().filter(|n| !n.peaks.is_empty()).count() > 1;
         let mut marks = vec![];
@@ -376,9 +460,8 @@ pub fn unbalance_with(
                 (true, _) => format!("nodes {}: {s}", names.join(", ")),
             };
             let left = at.0 > (area[0] + area[2]) / 2;
-            label(&root, &mut labels, &s, at, ink, left)?;
+            label(root, &mut labels, &s, at, ink, left)?;
         }
-        root.present()?;
     }
-    Ok(svg)
+    Ok(())
 }

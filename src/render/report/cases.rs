@@ -132,9 +132,10 @@ pub(super) fn cases_section(
     for c in cases {
         figure(
             o,
-            &unbalance_with(&c.response, Some(range))?,
+            &crate::render::plot_audit::unbalance_bode(&c.response, Some(range))?,
             &format!(
-                "Mode {}: response to its unbalances (zero to peak; pk-pk is twice).",
+                "Mode {}: response to its unbalances, amplitude zero to peak (pk-pk is twice) \
+                 and phase of the forward whirl relative to the first unbalance.",
                 c.mode
             ),
         );

@@ -1,0 +1,106 @@
+//! The report's summary of the model: shaft, disks, supports, weight, range, unbalance.
+
+use super::*;
+
+/// The model's summary rows (beam rotors in detail).
+pub(super) fn model_rows(report: &ReportResponse, rotor: &RotorInput) -> Vec<String> {
+    let mut rows = vec![];
+    let mut row =
+        |k: &str, v: String| rows.push(format!("<tr><th>{}</th>{}</tr>", escape(k), td(&v)));
+    match rotor {
+        RotorInput::Beam(b) => {
+            let elements: i64 = b.shaft.iter().map(|s| s.elements.unwrap_or(1).max(1)).sum();
+            let length: f64 = b.shaft.iter().map(|s| s.length).sum();
+            let dmax = b.shaft.iter().map(|s| s.outer_diameter).fold(0.0, f64::max);
+            row(
+                "shaft",
+                format!(
+                    "{} segment{}, {length:.3} m long, up to {:.1} mm in diameter",
+                    b.shaft.len(),
+                    if b.shaft.len() == 1 { "" } else { "s" },
+                    dmax * 1e3
+                ),
+            );
+            row("elements / nodes", format!("{elements} / {}", elements + 1));
+            let names: Vec<&str> = b.materials.keys().map(String::as_str).collect();
+            row("materials", names.join(", "));
+            let mass: f64 = b.disks.iter().map(|d| d.mass).sum();
+            let at: Vec<String> = b
+                .disks
+                .iter()
+                .map(|d| format!("{:.1} kg at node {}", d.mass, d.node))
+                .collect();
+            row(
+                "disks",
+                if b.disks.is_empty() {
+                    "none".into()
+                } else {
+                    format!(
+                        "{} ({}): {}",
+                        b.disks.len(),
+                        num(Some(mass), |m| format!("{m:.1} kg")),
+                        at.join(", ")
+                    )
+                },
+            );
+            let sup: Vec<String> = b
+                .supports
+                .iter()
+                .map(|s| {
+                    format!(
+                        "node {}: {}",
+                        s.node,
+                        crate::render::plot_audit::support_stiffness(s)
+                    )
+                })
+                .collect();
+            row(
+                "supports",
+                format!("{}: {}", b.supports.len(), sup.join("; ")),
+            );
+        }
+        RotorInput::Jeffcott(_) => row("rotor", "Jeffcott rotor".into()),
+        RotorInput::Matrices(_) => row("rotor", "given as matrices".into()),
+    }
+    let s = &report.static_deflection;
+    let kg = if s.gravity > 0.0 {
+        s.weight / s.gravity
+    } else {
+        f64::NAN
+    };
+    row(
+        "total weight",
+        format!(
+            "{} ({})",
+            num(Some(s.weight), |w| format!("{w:.1} N")),
+            num(Some(kg), |m| format!("{m:.2} kg"))
+        ),
+    );
+    let r = report.operating_range;
+    row(
+        "operating range",
+        format!("{} to {}", speed(r.min), speed(r.max)),
+    );
+    let u: Vec<String> = report
+        .unbalances
+        .iter()
+        .map(|u| {
+            format!(
+                "{} g mm at node {} ({:.0}°)",
+                num(Some(u.amount * 1e6), |a| format!("{a:.0}")),
+                u.node,
+                u.phase.to_degrees()
+            )
+        })
+        .collect();
+    row(
+        "unbalance",
+        if u.is_empty() {
+            "—".into()
+        } else {
+            u.join("; ")
+        },
+    );
+    row("damping model of the plots", report.level1.model.clone());
+    rows
+}
