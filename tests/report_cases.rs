@@ -222,3 +222,70 @@ async fn the_bundled_compressor_rotor_a_has_its_first_mode_case() {
     assert!((a1 * 1e6 - 3.16).abs() < 0.005, "{a1}");
     assert_eq!(num(&c["scale_factor"]), 6.0);
 }
+
+#[tokio::test]
+async fn bearing_sets_repeat_the_audit_each_with_its_own_checks() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/rotor-a-nvd.report.json"
+    );
+    let mut body: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    body["models"] = json!([{"model": "nonviscous"}]);
+    // Minimum clearance stiffens and damps more; maximum softens.
+    let set = |k: f64, c: f64| {
+        json!([{"node": 0, "stiffness": k, "damping": c, "loss_factor": 0.05},
+               {"node": 10, "stiffness": k, "damping": c, "loss_factor": 0.05}])
+    };
+    body["cases"] = json!([{"name": "minimum clearance", "supports": set(3e6, 2000.0)},
+                           {"name": "maximum clearance", "supports": set(1.2e6, 1000.0)}]);
+    let (status, v) = post_json("/v1/report", &body).await;
+    assert_eq!(status, 200, "{v}");
+    let sets = v["bearing_sets"].as_array().unwrap();
+    assert_eq!(sets.len(), 2);
+    // Each set is the report of the rotor with those supports: the same numbers.
+    for (s, (k, c)) in sets.iter().zip([(3e6, 2000.0), (1.2e6, 1000.0)]) {
+        let mut alone = body.clone();
+        alone["cases"] = Value::Null;
+        alone["rotor"]["supports"] = set(k, c);
+        let (_, a) = post_json("/v1/report", &alone).await;
+        assert_eq!(
+            s["campbell"]["critical_speeds"],
+            a["campbell"]["critical_speeds"]
+        );
+        assert_eq!(
+            s["level1"]["log_decrement_0"],
+            a["level1"]["log_decrement_0"]
+        );
+        assert_eq!(s["unbalance_cases"], a["unbalance_cases"]);
+        let name = s["name"].as_str().unwrap();
+        let prefixed = v["checks"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|c| {
+                c["check"]
+                    .as_str()
+                    .unwrap()
+                    .starts_with(&format!("[{name}] "))
+            })
+            .count();
+        assert_eq!(prefixed, s["checks"].as_array().unwrap().len());
+    }
+    // Stiffer bearings, a higher first critical speed.
+    let first = |s: &Value| num(&s["campbell"]["critical_speeds"][0]);
+    assert!(first(&sets[0]) > num(&v["campbell"]["critical_speeds"][0]));
+    assert!(first(&sets[1]) < num(&v["campbell"]["critical_speeds"][0]));
+    // A bad set is named where it is wrong.
+    body["cases"][1]["supports"][0]["stiffness"] = json!(-1.0);
+    let (status, e) = post_json("/v1/report", &body).await;
+    assert_eq!(status, 422, "{e}");
+    assert!(
+        e.to_string().contains("cases[1].supports[0].stiffness"),
+        "{e}"
+    );
+    // The page has the sets' table.
+    body["cases"][1]["supports"][0]["stiffness"] = json!(1.2e6);
+    let (_, _, page) = post_as("/v1/report", &body, "text/html").await;
+    let page = String::from_utf8(page).unwrap();
+    assert!(page.contains("Bearing sets") && page.contains("maximum clearance"));
+}

@@ -463,6 +463,7 @@ pub fn report() -> ReportResponse {
         campbell: campbell_data(),
         unbalance: unbalance_data(),
         unbalance_cases: vec![],
+        bearing_sets: vec![],
         vibration_limit: 25.4e-6,
         provenance: None,
         models: vec![

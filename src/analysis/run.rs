@@ -87,6 +87,8 @@ pub enum Outcome {
     Report {
         parts: Vec<Outcome>,
         cases: Vec<CaseOutcome>,
+        /// The same on each bearing set, in the plan's order.
+        sets: Vec<Outcome>,
     },
 }
 
@@ -419,26 +421,7 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                 model: model.damping.name(),
             })
         }
-        TaskKind::Report(plan) => {
-            let mut parts = vec![
-                run(&plan.map, control)?,
-                run(&plan.statics, control)?,
-                run(&plan.campbell, control)?,
-                run(&plan.unbalance, control)?,
-            ];
-            for m in &plan.models {
-                let level1 = run(&m.level1, control)?;
-                if m.primary {
-                    parts.extend([parts[2].clone(), level1, parts[3].clone()]);
-                } else {
-                    parts.push(run(&m.campbell, control)?);
-                    parts.push(level1);
-                    parts.push(run(&m.unbalance, control)?);
-                }
-            }
-            let cases = report_cases(plan, &parts[1], &parts[2], control)?;
-            Ok(Outcome::Report { parts, cases })
-        }
+        TaskKind::Report(plan) => run_report(plan, control),
     }
 }
 
@@ -448,6 +431,32 @@ fn rigid_body(e: AnalysisError, rotor: &Rotor) -> RunError {
         AnalysisError::Damping(d) => damping_error(d, rotor),
         e => e.into(),
     }
+}
+
+/// A report's parts, its unbalance cases and, for each bearing set, the same.
+fn run_report(plan: &ReportPlan, control: &Control) -> Result<Outcome, RunError> {
+    let mut parts = vec![
+        run(&plan.map, control)?,
+        run(&plan.statics, control)?,
+        run(&plan.campbell, control)?,
+        run(&plan.unbalance, control)?,
+    ];
+    for m in &plan.models {
+        let level1 = run(&m.level1, control)?;
+        if m.primary {
+            parts.extend([parts[2].clone(), level1, parts[3].clone()]);
+        } else {
+            parts.push(run(&m.campbell, control)?);
+            parts.push(level1);
+            parts.push(run(&m.unbalance, control)?);
+        }
+    }
+    let cases = report_cases(plan, &parts[1], &parts[2], control)?;
+    let mut sets = vec![];
+    for (_, sub) in &plan.sets {
+        sets.push(run_report(sub, control)?);
+    }
+    Ok(Outcome::Report { parts, cases, sets })
 }
 
 /// The report's unbalance cases (see [`cases`]): one per forward critical speed of its

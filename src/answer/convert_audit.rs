@@ -453,6 +453,7 @@ pub fn report(
         &mut checks,
     );
     Ok(api::ReportResponse {
+        bearing_sets: vec![],
         unbalance_cases,
         vibration_limit: placement::vibration_limit(hi * RPM),
         provenance: Some(api::Provenance {

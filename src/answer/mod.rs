@@ -16,9 +16,11 @@ pub use error::ApiError;
 pub use output::Output;
 
 use crate::analysis::control::Control;
-use crate::analysis::run::{Outcome, run};
+use crate::analysis::run::{CaseOutcome, Outcome, run};
 use crate::model::Task;
+use crate::model::api::{BearingSetReport, ReportCheck, ReportResponse};
 use crate::model::limits::BYTES_PER_VALUE;
+use crate::model::task::ReportPlan;
 use crate::model::task::TaskKind;
 
 impl Output {
@@ -97,34 +99,13 @@ impl Output {
                 &response,
                 model,
             )),
-            Outcome::Report { parts, cases } => {
+            Outcome::Report { parts, cases, sets } => {
                 let TaskKind::Report(plan) = &task.kind else {
                     return Err(ApiError::Internal(
                         "a report outcome of another task".into(),
                     ));
                 };
-                let tasks = plan.tasks();
-                let parts = parts
-                    .into_iter()
-                    .zip(tasks)
-                    .map(|(o, t)| {
-                        let mut out = Output::of(o, t)?;
-                        out.set_warnings(t.warnings.clone());
-                        Ok(out)
-                    })
-                    .collect::<Result<Vec<_>, ApiError>>()?;
-                let cases = cases
-                    .into_iter()
-                    .map(
-                        |c| match Output::of((*c.response).clone(), &plan.unbalance)? {
-                            Output::Unbalance(u) => Ok(convert_audit::unbalance_case(&c, u)),
-                            _ => Err(ApiError::Internal("a case's response".into())),
-                        },
-                    )
-                    .collect::<Result<Vec<_>, ApiError>>()?;
-                Output::Report(Box::new(
-                    convert_audit::report(parts, plan, cases).map_err(ApiError::Internal)?,
-                ))
+                Output::Report(Box::new(report_of(parts, cases, sets, plan)?))
             }
         })
     }
@@ -144,4 +125,53 @@ pub fn execute(task: &Task, control: &Control, max_bytes: u64) -> Result<Output,
         )));
     }
     Ok(out)
+}
+
+/// A report's answer from its outcomes (and each bearing set's, recursively).
+fn report_of(
+    parts: Vec<Outcome>,
+    cases: Vec<CaseOutcome>,
+    sets: Vec<Outcome>,
+    plan: &ReportPlan,
+) -> Result<ReportResponse, ApiError> {
+    let parts = parts
+        .into_iter()
+        .zip(plan.tasks())
+        .map(|(o, t)| {
+            let mut out = Output::of(o, t)?;
+            out.set_warnings(t.warnings.clone());
+            Ok(out)
+        })
+        .collect::<Result<Vec<_>, ApiError>>()?;
+    let cases = cases
+        .into_iter()
+        .map(
+            |c| match Output::of((*c.response).clone(), &plan.unbalance)? {
+                Output::Unbalance(u) => Ok(convert_audit::unbalance_case(&c, u)),
+                _ => Err(ApiError::Internal("a case's response".into())),
+            },
+        )
+        .collect::<Result<Vec<_>, ApiError>>()?;
+    let mut report = convert_audit::report(parts, plan, cases).map_err(ApiError::Internal)?;
+    for (o, (name, sub)) in sets.into_iter().zip(&plan.sets) {
+        let Outcome::Report { parts, cases, sets } = o else {
+            return Err(ApiError::Internal("a bearing set's outcome".into()));
+        };
+        let r = report_of(parts, cases, sets, sub)?;
+        report.checks.extend(r.checks.iter().map(|c| ReportCheck {
+            check: format!("[{name}] {}", c.check),
+            ..c.clone()
+        }));
+        report.bearing_sets.push(BearingSetReport {
+            name: name.clone(),
+            critical_speed_map: r.critical_speed_map,
+            static_deflection: r.static_deflection,
+            campbell: r.campbell,
+            level1: r.level1,
+            unbalance_cases: r.unbalance_cases,
+            models: r.models,
+            checks: r.checks,
+        });
+    }
+    Ok(report)
 }

@@ -232,15 +232,39 @@ pub fn html(report: &ReportResponse, rotor: &RotorInput) -> Result<String, Err> 
         &critical_speed_map_with(map, Some(range))?,
         "Natural frequencies at zero speed against the support stiffness; dots: the actual supports.",
     );
-    let rows: Vec<String> = map
-        .intersections
+    // Supports with the same coefficient meeting a mode at the same point share a row.
+    let mut merged: Vec<(
+        &crate::model::api::MapIntersection,
+        Vec<String>,
+        Vec<String>,
+    )> = vec![];
+    for i in &map.intersections {
+        let same = |m: &&mut (
+            &crate::model::api::MapIntersection,
+            Vec<String>,
+            Vec<String>,
+        )| {
+            m.0.mode == i.mode
+                && m.0.coefficient == i.coefficient
+                && (m.0.stiffness - i.stiffness).abs() <= 1e-9 * i.stiffness.abs()
+                && (m.0.frequency - i.frequency).abs() <= 1e-9 * i.frequency.abs()
+        };
+        match merged.iter_mut().find(same) {
+            Some(m) => {
+                m.1.push(i.support.to_string());
+                m.2.push(i.node.to_string());
+            }
+            None => merged.push((i, vec![i.support.to_string()], vec![i.node.to_string()])),
+        }
+    }
+    let rows: Vec<String> = merged
         .iter()
-        .map(|i| {
+        .map(|(i, supports, nodes)| {
             format!(
                 "<tr>{}{}{}{}{}{}{}</tr>",
                 td_num(&i.mode.to_string()),
-                td_num(&i.support.to_string()),
-                td_num(&i.node.to_string()),
+                td_num(&supports.join(", ")),
+                td_num(&nodes.join(", ")),
                 td(&i.coefficient),
                 td_num(&num(Some(i.stiffness), |k| format!("{k:.3e}"))),
                 td_num(&num(Some(i.frequency), |f| format!("{f:.1}"))),
@@ -442,6 +466,7 @@ pub fn html(report: &ReportResponse, rotor: &RotorInput) -> Result<String, Err> 
     o.push_str("<h2 id=\"models\">Damping models compared</h2>\n");
     o.push_str("<p>The same margins under each damping model: hysteretic, equivalent viscous and nonviscous damping need not agree.</p>\n");
     models_table(&mut o, report, lo, hi);
+    sets_section(&mut o, report, lo, hi);
 
     let mut warnings: Vec<&String> = vec![];
     let all = [
@@ -481,9 +506,11 @@ pub fn html(report: &ReportResponse, rotor: &RotorInput) -> Result<String, Err> 
 
 mod cases;
 mod models;
+mod sets;
 mod summary;
 use cases::cases_section;
 use models::models_table;
+use sets::sets_section;
 use summary::model_rows;
 
 #[cfg(test)]

@@ -49,6 +49,36 @@ pub struct ReportRequest {
     /// diametral clearance there.
     #[serde(default)]
     pub clearances: Option<Vec<ClearanceInput>>,
+    /// Bearing sets (API 684: minimum, nominal and maximum clearance, ...): the audit is
+    /// repeated on the rotor with each set's supports (and seals, when given), each with its
+    /// own checks; the verdict covers them all.
+    #[serde(default)]
+    pub cases: Option<Vec<BearingSetInput>>,
+}
+
+/// A set of bearings (and seals) the audit is repeated with.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct BearingSetInput {
+    pub name: String,
+    /// Replace `rotor.supports`.
+    pub supports: Vec<SupportInput>,
+    /// Replace `rotor.seals` (default: the rotor's).
+    #[serde(default)]
+    pub seals: Option<Vec<SupportInput>>,
+}
+
+/// The audit on one bearing set.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct BearingSetReport {
+    pub name: String,
+    pub critical_speed_map: CriticalSpeedMapResponse,
+    pub static_deflection: StaticResponse,
+    pub campbell: CampbellResponse,
+    pub level1: Level1Response,
+    pub unbalance_cases: Vec<UnbalanceCase>,
+    pub models: Vec<ModelMargins>,
+    pub checks: Vec<ReportCheck>,
 }
 
 /// A close-clearance location of the report.
@@ -197,6 +227,10 @@ pub struct ReportResponse {
     /// API 617's `Avl` at the maximum continuous speed, m peak to peak.
     #[serde(default)]
     pub vibration_limit: f64,
+    /// The audit on each of the request's bearing sets (`cases`); their checks are in
+    /// `checks` too, prefixed by the set's name.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub bearing_sets: Vec<BearingSetReport>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub provenance: Option<Provenance>,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]

@@ -4,9 +4,9 @@ use super::audit::{RPM, beam};
 use super::loads::node_index;
 use super::{Task, TaskKind};
 use crate::model::api::{
-    CriticalSpeedMapRequest, DampingInput, EquivalentInput, Level1Request, LogRange, NoOptions,
-    NonviscousInput, ReportRequest, RotorInput, SpeedRange, SpeedsInput, StaticRequest,
-    StaticSupports, SteadyUnbalanceInput, SweepRequest, UnbalanceResponseRequest,
+    BearingSetInput, CriticalSpeedMapRequest, DampingInput, EquivalentInput, Level1Request,
+    LogRange, NoOptions, NonviscousInput, ReportRequest, RotorInput, SpeedRange, SpeedsInput,
+    StaticRequest, StaticSupports, SteadyUnbalanceInput, SweepRequest, UnbalanceResponseRequest,
 };
 use crate::model::error::Invalid;
 use crate::model::error::positive;
@@ -32,6 +32,8 @@ pub struct ReportPlan {
     pub clearances: Vec<(usize, f64)>,
     /// SHA-256 (hex) of the request written again as compact JSON.
     pub input_sha256: String,
+    /// The same audit on each bearing set: its name and plan.
+    pub sets: Vec<(String, ReportPlan)>,
 }
 
 impl ReportPlan {
@@ -237,8 +239,17 @@ impl ReportRequest {
             models,
             clearances,
             input_sha256: sha256_hex(&serde_json::to_vec(self).unwrap_or_default()),
+            sets: vec![],
         };
         let mut cost = combined(&plan.run_tasks());
+        let mut plan = plan;
+        for (i, set) in self.cases.iter().flatten().enumerate() {
+            let (sub, c) = self.bearing_set(i, set, limits)?;
+            cost.work += c.work;
+            cost.response_bytes += c.response_bytes;
+            cost.peak_bytes = cost.peak_bytes.max(c.peak_bytes) + c.response_bytes;
+            plan.sets.push((set.name.clone(), sub));
+        }
         // The unbalance cases, one response each (their nodes are known only when run).
         for _ in 0..MAX_CASES {
             cost.work += plan.unbalance.cost.work;
@@ -262,6 +273,49 @@ pub const MAX_CASES: usize = 4;
 /// The default sweeps reach 1.3 x the maximum continuous speed: API 684's separation margin
 /// above it reaches 26%.
 pub const SWEEP_OVER_MCS: f64 = 1.3;
+
+impl ReportRequest {
+    /// The plan of the same report on bearing set `i`: the rotor's supports (and seals) those of
+    /// the set; errors under `cases[i]`.
+    fn bearing_set(
+        &self,
+        i: usize,
+        set: &BearingSetInput,
+        limits: &Limits,
+    ) -> Result<(ReportPlan, Cost), Invalid> {
+        let mut rotor = self.rotor.clone();
+        let RotorInput::Beam(b) = &mut rotor else {
+            return Err(Invalid::one(
+                format!("cases[{i}]"),
+                "bearing sets need a beam rotor",
+            ));
+        };
+        b.supports = set.supports.clone();
+        if let Some(s) = &set.seals {
+            b.seals = s.clone();
+        }
+        let sub = ReportRequest {
+            rotor,
+            cases: None,
+            ..self.clone()
+        };
+        let task = sub.parse(limits).map_err(|mut e| {
+            e.prefix_paths(|p| {
+                for part in ["supports", "seals"] {
+                    if let Some(rest) = p.strip_prefix(&format!("rotor.{part}")) {
+                        return format!("cases[{i}].{part}{rest}");
+                    }
+                }
+                format!("cases[{i}]: {p}")
+            });
+            e
+        })?;
+        match task.kind {
+            TaskKind::Report(plan) => Ok((*plan, task.cost)),
+            _ => Err(Invalid::one(format!("cases[{i}]"), "not a report")),
+        }
+    }
+}
 
 /// Lower-case hex of the SHA-256 of `bytes`.
 fn sha256_hex(bytes: &[u8]) -> String {
