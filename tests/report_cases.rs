@@ -289,3 +289,50 @@ async fn bearing_sets_repeat_the_audit_each_with_its_own_checks() {
     let page = String::from_utf8(page).unwrap();
     assert!(page.contains("Bearing sets") && page.contains("maximum clearance"));
 }
+
+#[tokio::test]
+async fn mode_shapes_follow_the_elements_shape_functions_between_nodes() {
+    // The symmetric rotor's first mode on 4 elements, against the same rotor on 24: the coarse
+    // shape's cubic interpolation at mid-element (0.15, 0.45, 0.75, 1.05 m) meets the fine
+    // mesh's nodes there; joining the coarse nodes straight would miss by the sag between them.
+    let body = |elements: u64, disk: u64, last: u64| {
+        let mut rotor = shaft(
+            json!([{"node": disk, "mass": 30.0, "polar_inertia": 0.6, "transverse_inertia": 0.3}]),
+            json!([{"node": 0, "stiffness": 1e6, "damping": 500.0},
+                   {"node": last, "stiffness": 1e6, "damping": 500.0}]),
+        );
+        rotor["shaft"][0]["elements"] = json!(elements);
+        report_body(rotor, [700.0, 900.0], json!([]))
+    };
+    let (_, coarse) = post_json("/v1/report", &body(4, 2, 4)).await;
+    let (_, fine) = post_json("/v1/report", &body(24, 12, 24)).await;
+    let curve: Vec<(f64, f64)> = coarse["unbalance_cases"][0]["shape_curve"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| (num(&p[0]), num(&p[1])))
+        .collect();
+    assert_eq!(curve.len(), 4 * 9);
+    let nodes = coarse["unbalance_cases"][0]["shape"].as_array().unwrap();
+    // At the nodes the curve is the nodal shape.
+    for (e, w) in nodes.windows(2).enumerate() {
+        assert!((curve[9 * e].1 - num(&w[0]["value"])).abs() < 1e-12);
+        assert!((curve[9 * e + 8].1 - num(&w[1]["value"])).abs() < 1e-12);
+    }
+    let fine_at = |z: f64| {
+        let s = fine["unbalance_cases"][0]["shape"].as_array().unwrap();
+        let p = s
+            .iter()
+            .find(|p| (num(&p["position"]) - z).abs() < 1e-9)
+            .unwrap();
+        num(&p["value"])
+    };
+    for e in 0..4 {
+        let (z, v) = curve[9 * e + 4];
+        let straight = 0.5 * (curve[9 * e].1 + curve[9 * e + 8].1);
+        let want = fine_at(z);
+        println!("{z:.2} m: cubic {v:.5}, straight {straight:.5}, fine {want:.5}");
+        assert!((v - want).abs() < 2e-3, "{z}: {v} vs {want}");
+        assert!((v - want).abs() < 0.5 * (straight - want).abs());
+    }
+}

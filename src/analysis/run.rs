@@ -8,7 +8,7 @@ use super::audit::frequency::{self, Excitation};
 use super::audit::level1::{self, ForwardPole, Level1};
 use super::audit::level2;
 use super::audit::peaks::{self, Peak};
-use super::audit::placement::{self, Profile};
+use super::audit::placement;
 use super::audit::statics::{self, Held, StaticResult};
 use super::campbell::{self, CampbellResult};
 use super::control::Control;
@@ -96,7 +96,7 @@ pub enum Outcome {
 #[derive(Debug, Clone)]
 pub struct CaseOutcome {
     pub case: Case,
-    pub shape: Vec<Profile>,
+    pub shape: cases::Shape,
     /// An [`Outcome::Unbalance`].
     pub response: Box<Outcome>,
     pub assessment: Assessment,
@@ -500,7 +500,7 @@ fn report_cases(
         control.check().map_err(|_| RunError::Cancelled)?;
         let shape = cases::profile(&system, &damped, critical.speed, critical.pole, result)?;
         let overhung = |left: bool| cases::overhung_mass(rotor, result, left);
-        let placed = placement::place(&shape, &journals, &overhung, rpm, *gravity);
+        let placed = placement::place(&shape.nodes, &journals, &overhung, rpm, *gravity);
         if placed.is_empty() {
             continue;
         }

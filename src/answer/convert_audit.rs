@@ -213,20 +213,28 @@ pub fn unbalance_case(
     response: api::UnbalanceResponseResponse,
 ) -> api::UnbalanceCase {
     let a = &c.assessment;
-    let top = c.shape.iter().map(|p| p.value.abs()).fold(0.0, f64::max);
+    let top = c
+        .shape
+        .nodes
+        .iter()
+        .map(|p| p.value.abs())
+        .fold(0.0, f64::max);
+    let scale = |v: f64| if top > 0.0 { v / top } else { 0.0 };
     api::UnbalanceCase {
         mode: c.case.mode,
         critical_speed: c.case.critical.speed,
         log_decrement: c.case.critical.log_decrement(),
         shape: c
             .shape
+            .nodes
             .iter()
             .map(|p| api::ShapePoint {
                 node: p.node,
                 position: p.position,
-                value: if top > 0.0 { p.value / top } else { 0.0 },
+                value: scale(p.value),
             })
             .collect(),
+        shape_curve: c.shape.curve.iter().map(|&(z, v)| [z, scale(v)]).collect(),
         unbalances: c
             .case
             .unbalances

@@ -73,16 +73,30 @@ pub fn overhung_mass(rotor: &BeamRotor, statics: &StaticResult, left: bool) -> f
     shaft + disks
 }
 
-/// The signed major semi-axis of every node's orbit in the forward pole of `damped` at `speed`
-/// nearest `pole`: `|a| + |b|` of the forward and backward circular parts, signed by the real
-/// part of its inner product with the node that moves most (in phase or in opposition).
+/// A mode's shape along the shaft: the signed major semi-axis at every node ([`Profile`]),
+/// and between nodes `curve`, `(position, value)` at [`CURVE_POINTS`] points per element.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Shape {
+    pub nodes: Vec<Profile>,
+    pub curve: Vec<(f64, f64)>,
+}
+
+/// Points per element of [`Shape::curve`], ends included.
+pub const CURVE_POINTS: usize = 9;
+
+/// The shape of the forward pole of `damped` at `speed` nearest `pole`: at each node `|a| +
+/// |b|` of the forward and backward circular parts, signed by the real part of its inner
+/// product with the node that moves most (in phase or in opposition). Between two nodes that
+/// keep their rotations the translations are the element's cubic Hermite interpolation of
+/// both ends' translations and rotations (the complex rotation `phi_y - i phi_x` is
+/// `d(x + i y)/dz`), then reduced the same way.
 pub fn profile(
     system: &RotorSystem,
     damped: &DampedModel,
     speed: f64,
     pole: c64,
     statics: &StaticResult,
-) -> Result<Vec<Profile>, AnalysisError> {
+) -> Result<Shape, AnalysisError> {
     let set = poles_at(damped, speed)?;
     let Some(p) = set
         .rotor
@@ -90,7 +104,7 @@ pub fn profile(
         .filter(|p| p.whirl == Whirl::Forward)
         .min_by(|a, b| (a.s - pole).norm().total_cmp(&(b.s - pole).norm()))
     else {
-        return Ok(vec![]);
+        return Ok(Shape::default());
     };
     let n = system.dofs.len();
     let doubled = damped.layout == Layout::Doubled;
@@ -104,35 +118,70 @@ pub fn profile(
         (a, b)
     };
     // Nodes a reduction left out have no translation of their own: not loaded.
-    let nodes: Vec<(usize, f64, (c64, c64))> = statics
+    type Node = (usize, f64, (c64, c64), Option<(c64, c64)>);
+    let nodes: Vec<Node> = statics
         .nodes
         .iter()
-        .filter_map(|d| Some((d.node, d.position, part(translation_of(system, d.node)?))))
+        .filter_map(|d| {
+            let t = part(translation_of(system, d.node)?);
+            let r = dof_of(system, d.node, DofKind::Rotation).map(part);
+            Some((d.node, d.position, t, r))
+        })
         .collect();
     let size = |(a, b): (c64, c64)| a.norm() + b.norm();
-    let Some(&(_, _, reference)) = nodes.iter().max_by(|x, y| size(x.2).total_cmp(&size(y.2)))
+    let Some(&(_, _, reference, _)) = nodes.iter().max_by(|x, y| size(x.2).total_cmp(&size(y.2)))
     else {
-        return Ok(vec![]);
+        return Ok(Shape::default());
     };
-    Ok(nodes
-        .iter()
-        .map(|&(node, position, (a, b))| {
-            let dot = (a * reference.0.conj() + b * reference.1.conj()).re;
-            Profile {
+    let signed = |(a, b): (c64, c64)| {
+        let dot = (a * reference.0.conj() + b * reference.1.conj()).re;
+        size((a, b)) * if dot < 0.0 { -1.0 } else { 1.0 }
+    };
+    let mut curve = vec![];
+    for w in nodes.windows(2) {
+        let ((n0, z0, t0, r0), (n1, z1, t1, r1)) = (w[0], w[1]);
+        let (Some(r0), Some(r1), true) = (r0, r1, n1 == n0 + 1) else {
+            curve.extend([(z0, signed(t0)), (z1, signed(t1))]);
+            continue;
+        };
+        let l = z1 - z0;
+        for k in 0..CURVE_POINTS {
+            let x = k as f64 / (CURVE_POINTS - 1) as f64;
+            let h = [
+                1.0 - 3.0 * x * x + 2.0 * x * x * x,
+                l * (x - 2.0 * x * x + x * x * x),
+                3.0 * x * x - 2.0 * x * x * x,
+                l * (x * x * x - x * x),
+            ];
+            let at = |f: fn((c64, c64)) -> c64| {
+                f(t0) * h[0] + f(r0) * h[1] + f(t1) * h[2] + f(r1) * h[3]
+            };
+            curve.push((z0 + x * l, signed((at(|v| v.0), at(|v| v.1)))));
+        }
+    }
+    Ok(Shape {
+        nodes: nodes
+            .iter()
+            .map(|&(node, position, t, _)| Profile {
                 node,
                 position,
-                value: size((a, b)) * if dot < 0.0 { -1.0 } else { 1.0 },
-            }
-        })
-        .collect())
+                value: signed(t),
+            })
+            .collect(),
+        curve,
+    })
+}
+
+fn dof_of(system: &RotorSystem, node: usize, kind: DofKind) -> Option<usize> {
+    system
+        .dofs
+        .iter()
+        .position(|d| d.node == node && d.kind == kind)
 }
 
 /// The translation of `node` in `system`, if it kept one.
 pub fn translation_of(system: &RotorSystem, node: usize) -> Option<usize> {
-    system
-        .dofs
-        .iter()
-        .position(|d| d.node == node && d.kind == DofKind::Translation)
+    dof_of(system, node, DofKind::Translation)
 }
 
 /// How a case's response reads against the limits.

@@ -132,6 +132,10 @@ pub struct UnbalanceCase {
     /// The mode's shape at its critical speed: the signed major semi-axis of each node's
     /// orbit, scaled to 1 at the node that moves most, by axial position.
     pub shape: Vec<ShapePoint>,
+    /// The same along the shaft, `[position m, value]` at 9 points per element: the element's
+    /// cubic (Hermite) interpolation of its ends' translations and rotations.
+    #[serde(default)]
+    pub shape_curve: Vec<[f64; 2]>,
     pub unbalances: Vec<PlacedUnbalance>,
     /// The response at the unbalances', bearings' and clearances' nodes, with its peaks, AF
     /// and separation margins; amplitudes zero to peak (`amplitude_peak_to_peak` in the

@@ -39,11 +39,15 @@ pub fn mode_shapes(cases: &[UnbalanceCase], bearings: &[f64]) -> Result<String, 
         ))?;
         for (k, c) in cases.iter().enumerate() {
             let colour = PALETTE[k % PALETTE.len()];
-            let pts: Vec<(f64, f64)> = c
-                .shape
-                .iter()
-                .filter(|p| p.position.is_finite() && p.value.is_finite())
-                .map(|p| (p.position, p.value))
+            // The interpolated shape where there is one, else the nodes joined straight.
+            let pts: Vec<(f64, f64)> = if c.shape_curve.is_empty() {
+                c.shape.iter().map(|p| (p.position, p.value)).collect()
+            } else {
+                c.shape_curve.iter().map(|p| (p[0], p[1])).collect()
+            };
+            let pts: Vec<(f64, f64)> = pts
+                .into_iter()
+                .filter(|p| p.0.is_finite() && p.1.is_finite())
                 .collect();
             chart
                 .draw_series(LineSeries::new(pts.iter().copied(), colour.stroke_width(2)))?

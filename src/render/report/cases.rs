@@ -44,7 +44,8 @@ pub(super) fn cases_section(
         o,
         &crate::render::plot_audit::mode_shapes(cases, &bearings)?,
         "Each mode's orbit major semi-axis at its critical speed, signed by phase, scaled to 1 \
-         (nodes joined straight); triangles: bearings; dots: the unbalances.",
+         at the node that moves most, interpolated along each element with its shape functions; \
+         triangles: bearings; dots: the unbalances.",
     );
     let rows: Vec<String> = cases.iter().map(case_row).collect();
     table(
