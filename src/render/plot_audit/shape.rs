@@ -16,18 +16,20 @@ pub fn mode_shapes(cases: &[UnbalanceCase], bearings: &[f64]) -> Result<String, 
             .flat_map(|c| c.shape.iter().map(|p| p.position))
             .chain(bearings.iter().copied());
         let (x0, x1) = range(xs, 0.02);
+        // Room above the shapes (scaled to 1) for the key, one line per case.
+        let top = 1.3 + 0.22 * cases.len() as f64;
         let mut chart = ChartBuilder::on(&root)
             .caption("Mode shapes at the critical speeds", (FONT, 22))
             .margin(14)
             .x_label_area_size(48)
             .y_label_area_size(70)
-            .build_cartesian_2d(x0..x1, -1.25..1.25)?;
+            .build_cartesian_2d(x0..x1, -1.25..top)?;
         chart
             .configure_mesh()
             .x_desc("axial position [m]")
             .y_desc("major semi-axis (scaled)")
             .x_label_formatter(&lin_tick(x1 - x0))
-            .y_label_formatter(&lin_tick(2.5))
+            .y_label_formatter(&lin_tick(top + 1.25))
             .label_style((FONT, TICK))
             .axis_desc_style((FONT, DESC))
             .light_line_style(GRID)
