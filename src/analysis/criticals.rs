@@ -109,40 +109,34 @@ pub fn criticals(
             if c.0 <= 0.0 {
                 continue;
             }
-            out.push(Critical {
-                speed: c.0,
-                branch: bi,
-                mode: b.mode,
-                whirl: if c.1.im >= 0.0 {
-                    Whirl::Forward
-                } else {
-                    Whirl::Backward
-                },
-                pole: c.1,
-                whirl_ratio: c.2,
-            });
+            out.push(critical(c, bi, b.mode));
         }
         if let Some(&last) = pts.last()
             && g(last) == 0.0
             && last.0 > 0.0
         {
             let c = refine(model, doubled, last, last, control)?;
-            out.push(Critical {
-                speed: c.0,
-                branch: bi,
-                mode: b.mode,
-                whirl: if c.1.im >= 0.0 {
-                    Whirl::Forward
-                } else {
-                    Whirl::Backward
-                },
-                pole: c.1,
-                whirl_ratio: c.2,
-            });
+            out.push(critical(c, bi, b.mode));
         }
     }
     out.sort_by(|a, b| a.speed.total_cmp(&b.speed));
     Ok(out)
+}
+
+/// A refined crossing `(speed, pole, whirl ratio)` of branch `branch` (mode `mode`).
+fn critical(c: (f64, c64, f64), branch: usize, mode: usize) -> Critical {
+    Critical {
+        speed: c.0,
+        branch,
+        mode,
+        whirl: if c.1.im >= 0.0 {
+            Whirl::Forward
+        } else {
+            Whirl::Backward
+        },
+        pole: c.1,
+        whirl_ratio: c.2,
+    }
 }
 
 /// The model a crossing is solved on: the model itself, or for the hysteretic model the linear

@@ -270,63 +270,15 @@ fn crossing(
     eval: &mut dyn FnMut(f64) -> Result<f64, AnalysisError>,
 ) -> Result<f64, AnalysisError> {
     let mut f = |x: f64| -> Result<f64, AnalysisError> { Ok(eval(x)? - target) };
-    let (mut a, mut b) = (a, b);
-    let (mut fa, mut fb) = (f(a)?, f(b)?);
+    let (fa, fb) = (f(a)?, f(b)?);
     if fa == 0.0 {
         return Ok(a);
     }
     if fb == 0.0 || fa.signum() == fb.signum() {
         return Ok(b);
     }
-    let (mut c, mut fc) = (a, fa);
-    let (mut d, mut e) = (b - a, b - a);
-    for _ in 0..100 {
-        if fb.signum() == fc.signum() {
-            (c, fc) = (a, fa);
-            d = b - a;
-            e = d;
-        }
-        if fc.abs() < fb.abs() {
-            (a, fa, b, fb, c, fc) = (b, fb, c, fc, b, fb);
-        }
-        let tol = SPEED_TOL * b.abs() + 1e-300;
-        let m = 0.5 * (c - b);
-        if m.abs() <= tol || fb == 0.0 {
-            break;
-        }
-        if e.abs() >= tol && fa.abs() > fb.abs() {
-            let s = fb / fa;
-            let (mut p, mut q) = if a == c {
-                (2.0 * m * s, 1.0 - s)
-            } else {
-                let q = fa / fc;
-                let r = fb / fc;
-                (
-                    s * (2.0 * m * q * (q - r) - (b - a) * (r - 1.0)),
-                    (q - 1.0) * (r - 1.0) * (s - 1.0),
-                )
-            };
-            if p > 0.0 {
-                q = -q;
-            } else {
-                p = -p;
-            }
-            if 2.0 * p < (3.0 * m * q - (tol * q).abs()).min((e * q).abs()) {
-                e = d;
-                d = p / q;
-            } else {
-                d = m;
-                e = m;
-            }
-        } else {
-            d = m;
-            e = m;
-        }
-        (a, fa) = (b, fb);
-        b += if d.abs() > tol { d } else { tol.copysign(m) };
-        fb = f(b)?;
-    }
-    Ok(b)
+    // Brent's tolerance is half the bracket's relative width.
+    crate::analysis::roots::brent(f, (a, b), (fa, fb), 2.0 * SPEED_TOL)
 }
 
 #[cfg(test)]
