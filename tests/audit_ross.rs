@@ -409,3 +409,83 @@ fn example_1s_moment_peaks_at_midspan_inside_an_element() {
         assert!((p.shear + w * (0.5 * l - x)).abs() < 1e-9 * w * l, "{p:?}");
     }
 }
+
+#[test]
+fn the_deflection_between_nodes_is_beam_theory_and_its_largest_is_found_there() {
+    // A stubby shaft (L/d = 6) on pins at its ends, three elements: no node at mid-span,
+    // where it deflects most. Beam theory with shear, q = rho A g:
+    // y(x) = -q x (L^3 - 2 L x^2 + x^3) / (24 E I) - q x (L - x) / (2 kappa G A),
+    // at mid-span 5 q L^4 / (384 E I) + q L^2 / (8 kappa G A).
+    let (l, d, e, nu, rho) = (0.6, 0.1, 2.1e11, 0.3, 7800.0);
+    let supports = json!([{"node": 0, "stiffness": 1e9}, {"node": 3, "stiffness": 1e9}]);
+    let rotor = beam(&uniform(supports, json!([]), 3, l, d));
+    let r = static_deflection(&rotor, G, Held::Rigid).unwrap();
+    let area = std::f64::consts::PI * d * d / 4.0;
+    let inertia = std::f64::consts::PI * d.powi(4) / 64.0;
+    let q = rho * area * G;
+    let kga = 6.0 * (1.0 + nu) / (7.0 + 6.0 * nu) * e / (2.0 * (1.0 + nu)) * area;
+    let exact = |x: f64| {
+        -q * x * (l.powi(3) - 2.0 * l * x * x + x.powi(3)) / (24.0 * e * inertia)
+            - q * x * (l - x) / (2.0 * kga)
+    };
+    let mid = exact(0.5 * l);
+    let shear_part = q * l * l / (8.0 * kga);
+    println!(
+        "mid-span {mid:e} m, of which shear {:.1}%",
+        100.0 * shear_part / -mid
+    );
+    assert!(shear_part / -mid > 0.02, "the shear term must matter here");
+    assert!(
+        rel(
+            mid,
+            -(5.0 * q * l.powi(4) / (384.0 * e * inertia) + shear_part)
+        ) < 1e-12
+    );
+    assert_eq!(r.diagram.len(), 3 * 9);
+    for p in &r.diagram {
+        assert!((p.y - exact(p.position)).abs() < 1e-9 * mid.abs(), "{p:?}");
+        assert_eq!(p.x, 0.0);
+    }
+    // The slopes at the nodes: dy/dz = -q (L^3 - 6 L z^2 + 4 z^3) / (24 E I) - q (L - 2 z) / (2 kappa G A)
+    // is the slope of the centre line; the section's rotation is its bending part alone.
+    for n in &r.nodes {
+        let z = n.position;
+        let bending = -q * (l.powi(3) - 6.0 * l * z * z + 4.0 * z.powi(3)) / (24.0 * e * inertia);
+        assert!(
+            (n.slope_y - bending).abs() < 1e-9 * bending.abs().max(1e-12),
+            "{n:?}"
+        );
+    }
+    let m = &r.max_deflection;
+    println!("largest {m:?}");
+    assert_eq!(m.element, 1);
+    assert!((m.position - 0.5 * l).abs() < 1e-6 * l, "{m:?}");
+    assert!(rel(m.y, mid) < 1e-12, "{m:?}");
+    // Joined straight, the nodes would give the deflection at z = L/3 there.
+    println!(
+        "straight between nodes: {:.1}% short at mid-span",
+        100.0 * (1.0 - exact(l / 3.0) / mid)
+    );
+}
+
+#[test]
+fn example_1s_largest_deflection_is_at_midspan_between_nodes() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/example1-hysteretic.modal.json"
+    ))
+    .unwrap();
+    let v: Value = serde_json::from_str(&text).unwrap();
+    let r = static_deflection(&beam(&v["rotor"]), G, Held::Rigid).unwrap();
+    let m = &r.max_deflection;
+    let at_nodes = r.nodes.iter().map(|n| n.y.abs()).fold(0.0, f64::max);
+    println!(
+        "largest {:.4e} m at {:.4} m; largest at a node {:.4e} m ({:.1}% less)",
+        m.y.abs(),
+        m.position,
+        at_nodes,
+        100.0 * (1.0 - at_nodes / m.y.abs())
+    );
+    assert!((m.position - 0.75).abs() < 1e-6, "{m:?}");
+    assert!(m.y.abs() > at_nodes);
+}

@@ -184,6 +184,8 @@ pub fn statics() -> StaticResponse {
             position: p,
             deflection: defl(p),
             deflection_x: 0.0,
+            slope: (defl(p + 1e-6) - defl(p - 1e-6)) / 2e-6,
+            slope_x: 0.0,
         })
         .collect();
     let mut stations = vec![];
@@ -194,6 +196,8 @@ pub fn statics() -> StaticResponse {
                 position: x,
                 shear: shear(x),
                 bending_moment: -sag(x),
+                deflection: defl(x),
+                deflection_x: 0.0,
             });
         }
     }
@@ -208,6 +212,12 @@ pub fn statics() -> StaticResponse {
     }
     let (max_moment, max_moment_position) = (mm.bending_moment, mm.position);
     let (max_shear, max_shear_position, max_shear_element) = (ms.shear, ms.position, ms.element);
+    let md = stations
+        .iter()
+        .max_by(|a, b| a.deflection.abs().total_cmp(&b.deflection.abs()))
+        .unwrap();
+    let (max_deflection, max_deflection_position, max_deflection_y) =
+        (md.deflection.abs(), md.position, md.deflection);
     StaticResponse {
         diagram: stations.clone(),
         max_moment,
@@ -215,6 +225,9 @@ pub fn statics() -> StaticResponse {
         max_shear,
         max_shear_position,
         max_shear_element,
+        max_deflection,
+        max_deflection_position,
+        max_deflection_y,
         gravity: G,
         supports_model: StaticSupports::Elastic,
         supports: vec![

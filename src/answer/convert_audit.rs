@@ -62,6 +62,8 @@ pub fn statics(r: &StaticResult, gravity: f64, rigid: bool) -> api::StaticRespon
                 position: n.position,
                 deflection: n.y,
                 deflection_x: n.x,
+                slope: n.slope_y,
+                slope_x: n.slope_x,
             })
             .collect(),
         stations: r.stations.iter().map(station).collect(),
@@ -71,6 +73,9 @@ pub fn statics(r: &StaticResult, gravity: f64, rigid: bool) -> api::StaticRespon
         max_shear: r.max_shear.shear,
         max_shear_position: r.max_shear.position,
         max_shear_element: r.max_shear.element,
+        max_deflection: r.max_deflection.y.hypot(r.max_deflection.x),
+        max_deflection_position: r.max_deflection.position,
+        max_deflection_y: r.max_deflection.y,
         weight: r.weight,
         warnings: vec![],
     }
@@ -82,6 +87,8 @@ fn station(s: &crate::analysis::audit::statics::Station) -> api::ShaftStation {
         position: s.position,
         shear: s.shear,
         bending_moment: s.bending_moment,
+        deflection: s.y,
+        deflection_x: s.x,
     }
 }
 

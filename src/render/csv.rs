@@ -130,8 +130,8 @@ pub fn csv(out: &Output) -> Option<String> {
         }
         Output::Static(st) => {
             s.push_str(
-                "node,position,deflection,deflection_x,reaction,reaction_x,shear_left,\
-                 shear_right,bending_moment\n",
+                "node,position,deflection,deflection_x,slope,slope_x,reaction,reaction_x,\
+                 shear_left,shear_right,bending_moment\n",
             );
             // Shear left and right of a node (it jumps by the node's forces), moment there.
             let left = |k: usize| st.stations.iter().rfind(|t| t.element + 1 == k);
@@ -147,11 +147,13 @@ pub fn csv(out: &Output) -> Option<String> {
                 let (l, r) = (left(k), right(k));
                 let moment = r.or(l).map(|t| t.bending_moment);
                 s.push_str(&format!(
-                    "{},{},{},{},{},{},{},{},{}\n",
+                    "{},{},{},{},{},{},{},{},{},{},{}\n",
                     n.node,
                     n.position,
                     n.deflection,
                     n.deflection_x,
+                    n.slope,
+                    n.slope_x,
                     num(ry),
                     num(rx),
                     num(l.map(|t| t.shear)),

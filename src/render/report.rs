@@ -292,9 +292,16 @@ pub fn html(report: &ReportResponse, rotor: &RotorInput) -> Result<String, Err> 
         &mut o,
         &super::plot_audit::static_deflection(s)?,
         &format!(
-            "Under gravity {:.4} m/s², {} supports.",
+            "Under gravity {:.4} m/s², {} supports. Largest deflection {:.2} µm at {:.3} m, \
+             largest bending moment {:.2} N m at {:.3} m, largest shear {:.1} N at {:.3} m.",
             s.gravity,
-            supports_name(s.supports_model)
+            supports_name(s.supports_model),
+            s.max_deflection * 1e6,
+            s.max_deflection_position,
+            s.max_moment.abs(),
+            s.max_moment_position,
+            s.max_shear.abs(),
+            s.max_shear_position,
         ),
     );
     let rows: Vec<String> = s

@@ -1,5 +1,5 @@
 //! The analyses of a rotordynamic audit (API 684 / API 617): the undamped critical speed map
-//! ([`critical_map`]), static deflection and bearing loads ([`statics`]), the Level I stability
+//! ([`critical_map`]), static deflection and bearing loads ([`statics`], the curve between nodes by [`deflection`]), the Level I stability
 //! screen ([`level1`]) and the Level II analysis ([`level2`]), the non-synchronous frequency response ([`frequency`]) and the
 //! resonance peaks of a response curve with their amplification factors and separation
 //! margins ([`peaks`]). The report's unbalance cases are placed by API 684's rules
@@ -7,6 +7,7 @@
 
 pub mod cases;
 pub mod critical_map;
+pub mod deflection;
 pub mod frequency;
 pub mod level1;
 pub mod level2;

@@ -25,7 +25,9 @@
 //!
 //! `max_moment` is exact: inside an element the moment is quadratic, so its extreme is at an end
 //! or where the shear changes sign (Example 1's 18.6 N m = w L^2 / 8 at mid-span, between the
-//! nodes); `diagram` samples the exact curves.
+//! nodes); `diagram` samples the exact curves, the deflection with them (exact between the
+//! nodes too, [`deflection`](super::deflection)), and `max_deflection` is the largest
+//! displacement along the shaft, wherever it is.
 //!
 //! Stations: shear and moment at both ends of every element, from the equilibrium of the part
 //! left of the section (node forces: reactions and disk weights; each element's own weight
@@ -36,6 +38,7 @@
 //! relative on its two rotors); the moment at the right end is 0 up to the round-off of the
 //! reactions, where ROSS sets it to 0.
 
+use super::deflection::{self, Span};
 use crate::analysis::AnalysisError;
 use crate::fem::assembly;
 use crate::linalg::{self, LinalgError, RMat};
@@ -67,6 +70,9 @@ pub struct Deflection {
     pub position: f64,
     pub y: f64,
     pub x: f64,
+    /// `dy/dz`, `dx/dz` of the section (the bending rotations), rad.
+    pub slope_y: f64,
+    pub slope_x: f64,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -77,6 +83,9 @@ pub struct Station {
     pub shear: f64,
     /// ROSS's sign: negative sagging, N m.
     pub bending_moment: f64,
+    /// The displacement there, m ([`deflection`](super::deflection): exact inside elements).
+    pub y: f64,
+    pub x: f64,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -92,6 +101,8 @@ pub struct StaticResult {
     pub max_moment: Station,
     /// The largest |shear| (at an element's end: it is linear in each).
     pub max_shear: Station,
+    /// The largest displacement `|(x, y)|` along the shaft, between nodes where it is there.
+    pub max_deflection: Station,
     /// Weight of shaft and disks, N.
     pub weight: f64,
 }
@@ -153,6 +164,8 @@ pub fn static_deflection(
             position: z[i],
             y: uy[2 * i],
             x: ux[2 * i],
+            slope_y: uy[2 * i + 1],
+            slope_x: ux[2 * i + 1],
         })
         .collect();
     // Upward node forces (reactions, disk weights) and element weights (down).
@@ -163,14 +176,22 @@ pub fn static_deflection(
     for d in rotor.disks() {
         force[d.node] -= gravity * d.mass;
     }
-    let element_weight: Vec<f64> = rotor
-        .elements()
+    let sections: Vec<_> = rotor.elements().iter().map(assembly::section).collect();
+    let element_weight: Vec<f64> = sections
         .iter()
-        .map(|e| {
-            let s = assembly::section(e);
-            gravity * s.density * s.area() * s.length
-        })
+        .map(|s| gravity * s.density * s.area() * s.length)
         .collect();
+    // Each element's deflection curve in each plane: its weight loads the y plane only.
+    let curve = |e: usize, t: f64| {
+        let ends = |u: &[f64]| [u[2 * e], u[2 * e + 1], u[2 * e + 2], u[2 * e + 3]];
+        let s = &sections[e];
+        let (y, x) = (
+            Span::new(s, -element_weight[e] / s.length.max(f64::MIN_POSITIVE)),
+            Span::new(s, 0.0),
+        );
+        let d = t - z[e];
+        (y.deflection(ends(&uy), d), x.deflection(ends(&ux), d))
+    };
     let weight = element_weight.iter().sum::<f64>()
         + gravity * rotor.disks().iter().map(|d| d.mass).sum::<f64>();
     // Left of a section: the upward resultant `up` and its first moment `up_z` about z = 0,
@@ -182,6 +203,7 @@ pub fn static_deflection(
     let mut stations = Vec::with_capacity(2 * rotor.elements().len());
     let mut diagram = Vec::with_capacity(DIAGRAM_POINTS * rotor.elements().len());
     let mut max_moment: Option<Station> = None;
+    let mut max_deflection: Option<Station> = None;
     for (e, &we) in element_weight.iter().enumerate() {
         up += force[e];
         up_z += force[e] * z[e];
@@ -189,11 +211,14 @@ pub fn static_deflection(
         let q = if l > 0.0 { we / l } else { 0.0 };
         let at = |t: f64| {
             let d = t - z0;
+            let (y, x) = curve(e, t);
             Station {
                 element: e,
                 position: t,
                 shear: -(up - q * d),
                 bending_moment: -(up * t - up_z - 0.5 * q * d * d),
+                y,
+                x,
             }
         };
         stations.push(at(z0));
@@ -212,13 +237,35 @@ pub fn static_deflection(
                 max_moment = Some(c);
             }
         }
+        // The largest displacement: the best of the element's samples, then refined between
+        // its neighbours (the curve is a quartic in each element).
+        let size = |t: f64| {
+            let (y, x) = curve(e, t);
+            y.hypot(x)
+        };
+        let samples = &diagram[diagram.len() - DIAGRAM_POINTS..];
+        let best = (0..DIAGRAM_POINTS)
+            .max_by(|&a, &b| size(samples[a].position).total_cmp(&size(samples[b].position)))
+            .expect("samples");
+        let lo = samples[best.saturating_sub(1)].position;
+        let hi = samples[(best + 1).min(DIAGRAM_POINTS - 1)].position;
+        let c = at(deflection::refine_max(size, lo, hi));
+        if max_deflection
+            .as_ref()
+            .is_none_or(|m: &Station| c.y.hypot(c.x) > m.y.hypot(m.x))
+        {
+            max_deflection = Some(c);
+        }
         up -= we;
         up_z -= we * 0.5 * (z[e] + z[e + 1]);
+        let (y, x) = curve(e, z[e + 1]);
         stations.push(Station {
             element: e,
             position: z[e + 1],
             shear: -up,
             bending_moment: -(up * z[e + 1] - up_z),
+            y,
+            x,
         });
     }
     let max_shear = stations
@@ -233,6 +280,7 @@ pub fn static_deflection(
         diagram,
         max_moment: max_moment.expect("a shaft has elements"),
         max_shear,
+        max_deflection: max_deflection.expect("a shaft has elements"),
         weight,
     })
 }

@@ -119,6 +119,12 @@ pub struct NodeDeflection {
     pub deflection: f64,
     /// x displacement, m (nonzero only with cross-coupled supports).
     pub deflection_x: f64,
+    /// Slope `dy/dz` of the section (bending rotation), rad.
+    #[serde(default)]
+    pub slope: f64,
+    /// Slope `dx/dz`, rad.
+    #[serde(default)]
+    pub slope_x: f64,
 }
 
 /// Internal forces at an end of an element.
@@ -132,6 +138,13 @@ pub struct ShaftStation {
     pub shear: f64,
     /// Bending moment, N m, ROSS's sign: negative sagging.
     pub bending_moment: f64,
+    /// Signed y displacement there, m: exact between nodes (the element's shape functions and
+    /// the particular solution of its uniform weight).
+    #[serde(default)]
+    pub deflection: f64,
+    /// x displacement there, m.
+    #[serde(default)]
+    pub deflection_x: f64,
 }
 
 /// Answer of `POST /v1/static`.
@@ -163,6 +176,16 @@ pub struct StaticResponse {
     /// The element whose end carries it.
     #[serde(default)]
     pub max_shear_element: usize,
+    /// The largest displacement `|(x, y)|` along the shaft, m, wherever it is (between nodes
+    /// when it is there: the deflection curve is exact inside each element).
+    #[serde(default)]
+    pub max_deflection: f64,
+    /// Where it is, m.
+    #[serde(default)]
+    pub max_deflection_position: f64,
+    /// Its signed y displacement, m.
+    #[serde(default)]
+    pub max_deflection_y: f64,
     /// Weight of shaft and disks, N; the reactions balance it.
     pub weight: f64,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]

@@ -132,14 +132,23 @@ pub fn static_deflection(s: &StaticResponse) -> Result<String, Err> {
             .map(|n| n.position)
             .chain(s.stations.iter().map(|t| t.position));
         let (x0, x1) = range(xs, 0.02);
-        let max = s
-            .nodes
+        // The exact curve where the answer has it (`diagram`), else the nodes joined.
+        let curve: Vec<(f64, f64)> = if s.diagram.is_empty() {
+            s.nodes.iter().map(|n| (n.position, n.deflection)).collect()
+        } else {
+            s.diagram
+                .iter()
+                .map(|t| (t.position, t.deflection))
+                .collect()
+        };
+        let max = curve
             .iter()
-            .map(|n| n.deflection.abs())
+            .map(|p| p.1.abs())
+            .chain([s.max_deflection_y.abs()])
             .filter(|v| v.is_finite())
             .fold(0.0, f64::max);
         let (scale, unit) = length_unit(max);
-        let ds = s.nodes.iter().map(|n| n.deflection * scale).chain([0.0]);
+        let ds = curve.iter().map(|p| p.1 * scale).chain([0.0]);
         let (y0, y1) = range(ds, 0.18);
         let caption = format!("Static deflection under gravity (weight {:.1} N)", s.weight);
         let mut chart = ChartBuilder::on(&top)
@@ -169,17 +178,28 @@ pub fn static_deflection(s: &StaticResponse) -> Result<String, Err> {
             .filter(|n| n.position.is_finite() && n.deflection.is_finite())
             .map(|n| (n.position, n.deflection * scale))
             .collect();
+        let line: Vec<(f64, f64)> = curve
+            .iter()
+            .filter(|p| p.0.is_finite() && p.1.is_finite())
+            .map(|p| (p.0, p.1 * scale))
+            .collect();
         chart.draw_series(LineSeries::new(
-            pts.iter().copied(),
+            line.iter().copied(),
             PALETTE[0].stroke_width(2),
         ))?;
         chart.draw_series(pts.iter().map(|p| Circle::new(*p, 3, PALETTE[0].filled())))?;
         let mut labels = Labels::new(area);
-        labels.block_path(&pixels(&chart, &pts));
-        if let Some(p) = pts.iter().min_by(|a, b| a.1.total_cmp(&b.1)) {
-            let at = chart.backend_coord(p);
-            // Deflections are known at the nodes only (joined straight here).
-            let s = format!("largest at a node {:.1} {unit} at {:.3} m", p.1.abs(), p.0);
+        labels.block_path(&pixels(&chart, &line));
+        // The largest along the shaft (between nodes when it is there), else at a node.
+        let largest = if s.diagram.is_empty() {
+            pts.iter().copied().min_by(|a, b| a.1.total_cmp(&b.1))
+        } else {
+            Some((s.max_deflection_position, s.max_deflection_y * scale))
+        };
+        if let Some(p) = largest.filter(|p| p.0.is_finite() && p.1.is_finite()) {
+            let at = chart.backend_coord(&p);
+            root.draw(&Circle::new(at, 5, PALETTE[0].stroke_width(2)))?;
+            let s = format!("largest {:.1} {unit} at {:.3} m", p.1.abs(), p.0);
             label(&root, &mut labels, &s, at, PALETTE[0], false)?;
         }
         for r in &s.supports {
