@@ -142,6 +142,9 @@ fn ross_reports_unbalance_weights_are_the_journal_loads_and_overhung_masses() {
                     first / api
                 );
                 assert!(first / api > 300.0);
+                // No disk outboard: no overhung mass, as ross-report's rotor type says.
+                assert_eq!(overhung_mass(&rotor, &st, true), None);
+                assert_eq!(overhung_mass(&rotor, &st, false), None);
                 // Second mode: one per journal, each its own load.
                 for (f, l) in floats(&forces["2"]).iter().zip(&theirs) {
                     assert!(rel(*f, 2.0 * 254e-6 * l) < 1e-12);
@@ -157,11 +160,11 @@ fn ross_reports_unbalance_weights_are_the_journal_loads_and_overhung_masses() {
                     .collect();
                 let ours: Vec<f64> = if name == "double_overhung" {
                     vec![
-                        overhung_mass(&rotor, &st, true),
-                        overhung_mass(&rotor, &st, false),
+                        overhung_mass(&rotor, &st, true).unwrap(),
+                        overhung_mass(&rotor, &st, false).unwrap(),
                     ]
                 } else {
-                    vec![overhung_mass(&rotor, &st, false)]
+                    vec![overhung_mass(&rotor, &st, false).unwrap()]
                 };
                 println!("{name}: W3 ross-report {outboard:?} kg, Whirl {ours:?} kg");
                 for (a, b) in outboard.iter().zip(&ours) {

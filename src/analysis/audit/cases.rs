@@ -43,11 +43,12 @@ fn position(statics: &StaticResult, node: usize) -> f64 {
         .map_or(f64::NAN, |n| n.position)
 }
 
-/// Mass of shaft and disks outboard of the first (`left`) or last bearing, kg.
-pub fn overhung_mass(rotor: &BeamRotor, statics: &StaticResult, left: bool) -> f64 {
+/// Mass of shaft and disks outboard of the first (`left`) or last bearing, kg; `None` when no
+/// disk is there (a bare shaft end is no overhung rotor).
+pub fn overhung_mass(rotor: &BeamRotor, statics: &StaticResult, left: bool) -> Option<f64> {
     let bearings: Vec<usize> = statics.reactions.iter().map(|r| r.node).collect();
     let (Some(&lo), Some(&hi)) = (bearings.iter().min(), bearings.iter().max()) else {
-        return 0.0;
+        return None;
     };
     let outboard = |node: usize| if left { node < lo } else { node > hi };
     let shaft: f64 = rotor
@@ -64,13 +65,13 @@ pub fn overhung_mass(rotor: &BeamRotor, statics: &StaticResult, left: bool) -> f
                 * (e.outer_diameter.powi(2) - e.inner_diameter.powi(2))
         })
         .sum();
-    let disks: f64 = rotor
+    let disks: Vec<f64> = rotor
         .disks()
         .iter()
         .filter(|d| outboard(d.node))
         .map(|d| d.mass)
-        .sum();
-    shaft + disks
+        .collect();
+    (!disks.is_empty()).then(|| shaft + disks.iter().sum::<f64>())
 }
 
 /// A mode's shape along the shaft: the signed major semi-axis at every node ([`Profile`]),

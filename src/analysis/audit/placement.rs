@@ -8,9 +8,10 @@
 //! - one antinode between the bearings: there, W the sum of the journal static loads;
 //! - two antinodes (a conical or second bending mode): at both, 180 degrees apart where the
 //!   lobes move in opposition, each W the static load of its nearest journal;
-//! - an antinode outboard of the bearings (overhung): there, W the mass outboard of the
-//!   nearest bearing (shaft and disks); when the mode's largest motion is outboard, only its
-//!   overhangs are loaded.
+//! - an antinode outboard of the bearings on an overhang that carries a disk (an overhung
+//!   impeller or coupling hub): there, W the mass outboard of the nearest bearing (shaft and
+//!   disks); when the mode's largest motion is there, only its overhangs are loaded. A bare
+//!   shaft end past a bearing is no overhang: its antinodes count as the span's.
 //!
 //! A lobe is a run of nodes moving in phase; a lobe whose largest motion is under
 //! [`MINOR_LOBE`] of the mode's is not an antinode (a coupling end swinging against a first
@@ -121,11 +122,14 @@ fn lobes(profile: &[Profile]) -> Vec<(usize, f64)> {
 }
 
 /// API 684's unbalances for a mode of `profile` (module docs). `overhung(left)` is the mass
-/// outboard of the first (`true`) or last bearing, kg; `g` turns loads into kg.
+/// outboard of the first (`true`) or last bearing, kg, or `None` where no disk (impeller,
+/// coupling hub) overhangs there: a bare shaft end past a bearing is part of a between-bearings
+/// rotor, and an antinode on it is loaded as any other (as ross-report, which classifies the
+/// rotor by its disks). `g` turns loads into kg.
 pub fn place(
     profile: &[Profile],
     journals: &[Journal],
-    overhung: &dyn Fn(bool) -> f64,
+    overhung: &dyn Fn(bool) -> Option<f64>,
     rpm: f64,
     g: f64,
 ) -> Vec<Placed> {
@@ -155,7 +159,19 @@ pub fn place(
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
             (lo.min(x), hi.max(x))
         });
-    let outboard = |i: usize| profile[i].position < span.0 || profile[i].position > span.1;
+    // The overhang an antinode is on, with its mass: `None` between the bearings or on a bare
+    // shaft end.
+    let overhang = |i: usize| {
+        let x = profile[i].position;
+        if x < span.0 {
+            overhung(true)
+        } else if x > span.1 {
+            overhung(false)
+        } else {
+            None
+        }
+    };
+    let outboard = |i: usize| overhang(i).is_some();
     // An overhung mode (its largest motion outboard) is loaded at its overhangs only: the
     // span swinging back against it is the overhang's reaction, not a mode of its own.
     if major.first().is_some_and(|&(i, _)| outboard(i)) {
@@ -169,10 +185,8 @@ pub fn place(
         .iter()
         .map(|&(i, sign)| {
             let p = profile[i];
-            let (weight, rule) = if p.position < span.0 {
-                (overhung(true), Rule::Overhung)
-            } else if p.position > span.1 {
-                (overhung(false), Rule::Overhung)
+            let (weight, rule) = if let Some(w) = overhang(i) {
+                (w, Rule::Overhung)
             } else if major.len() == 1 {
                 (total, Rule::OneAntinode)
             } else {
@@ -257,7 +271,7 @@ mod tests {
     fn a_first_bending_mode_is_loaded_at_its_antinode_with_the_journal_loads() {
         // The coupling end (node 0) swings against it at a tenth: not an antinode.
         let p = profile(&[-0.1, 0.0, 0.5, 0.9, 1.0, 0.8, 0.4, 0.0, 0.05]);
-        let u = place(&p, &journals(), &|_| 7.0, 10_000.0, G);
+        let u = place(&p, &journals(), &|_| Some(7.0), 10_000.0, G);
         assert_eq!(u.len(), 1);
         assert_eq!(
             (u[0].node, u[0].rule, u[0].phase),
@@ -271,7 +285,7 @@ mod tests {
     #[test]
     fn a_conical_mode_is_loaded_at_both_antinodes_in_opposition() {
         let p = profile(&[1.0, 0.8, 0.5, 0.2, -0.1, -0.4, -0.7, -0.9, -1.1]);
-        let u = place(&p, &journals(), &|_| 7.0, 10_000.0, G);
+        let u = place(&p, &journals(), &|_| Some(7.0), 10_000.0, G);
         assert_eq!(u.len(), 2);
         // Both ends are outboard of the bearings here: overhung masses.
         assert_eq!((u[0].node, u[1].node), (0, 8));
@@ -280,9 +294,16 @@ mod tests {
                 .all(|u| u.rule == Rule::Overhung && u.weight == 7.0)
         );
         assert_eq!((u[0].phase, u[1].phase), (0.0, std::f64::consts::PI));
+        // The same ends without a disk on them are bare shaft: two antinodes of a
+        // between-bearings rotor, each with its nearest journal's load.
+        let u = place(&p, &journals(), &|_| None, 10_000.0, G);
+        assert_eq!((u[0].node, u[1].node), (0, 8));
+        assert!(u.iter().all(|u| u.rule == Rule::TwoAntinodes));
+        assert!((u[0].weight - 300.0 / G).abs() < 1e-12);
+        assert!((u[1].weight - 500.0 / G).abs() < 1e-12);
         // Between the bearings: the nearest journal's load each.
         let p = profile(&[0.0, 0.8, 1.0, 0.5, 0.0, -0.5, -1.2, -0.9, 0.0]);
-        let u = place(&p, &journals(), &|_| 7.0, 10_000.0, G);
+        let u = place(&p, &journals(), &|_| Some(7.0), 10_000.0, G);
         assert_eq!((u[0].node, u[1].node), (2, 6));
         assert!((u[0].weight - 300.0 / G).abs() < 1e-12);
         assert!((u[1].weight - 500.0 / G).abs() < 1e-12);
@@ -295,7 +316,7 @@ mod tests {
         let u = place(
             &p,
             &journals(),
-            &|left| if left { 3.0 } else { 12.0 },
+            &|left| Some(if left { 3.0 } else { 12.0 }),
             6_000.0,
             G,
         );
@@ -308,7 +329,7 @@ mod tests {
         assert!((u[0].amount - 25.4e-6).abs() < 1e-15);
         // The span swinging back at a third of the overhang: still the overhang alone.
         let p = profile(&[0.0, 0.0, -0.2, -0.3, -0.33, -0.25, -0.1, 0.0, 1.0]);
-        let u = place(&p, &journals(), &|_| 12.0, 6_000.0, G);
+        let u = place(&p, &journals(), &|_| Some(12.0), 6_000.0, G);
         assert_eq!(u.len(), 1);
         assert_eq!((u[0].node, u[0].rule), (8, Rule::Overhung));
     }
