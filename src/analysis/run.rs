@@ -434,29 +434,73 @@ fn rigid_body(e: AnalysisError, rotor: &Rotor) -> RunError {
 }
 
 /// A report's parts, its unbalance cases and, for each bearing set, the same.
+///
+/// Each analysis fills a share of the progress in proportion to its estimated work (the
+/// cases take [`MAX_CASES`] unbalance responses' share), so progress never goes back when
+/// the next analysis announces its own work.
 fn run_report(plan: &ReportPlan, control: &Control) -> Result<Outcome, RunError> {
+    let total = report_work(plan);
+    let mut at = 0.0;
+    let mut share = |work: f64| {
+        let from = at / total;
+        at += work;
+        (from, at / total)
+    };
+    let mut step = |task: &Task| {
+        let (from, to) = share(work(task));
+        control.part(from, to, || run(task, control))
+    };
     let mut parts = vec![
-        run(&plan.map, control)?,
-        run(&plan.statics, control)?,
-        run(&plan.campbell, control)?,
-        run(&plan.unbalance, control)?,
+        step(&plan.map)?,
+        step(&plan.statics)?,
+        step(&plan.campbell)?,
+        step(&plan.unbalance)?,
     ];
     for m in &plan.models {
-        let level1 = run(&m.level1, control)?;
+        let level1 = step(&m.level1)?;
         if m.primary {
             parts.extend([parts[2].clone(), level1, parts[3].clone()]);
         } else {
-            parts.push(run(&m.campbell, control)?);
+            parts.push(step(&m.campbell)?);
             parts.push(level1);
-            parts.push(run(&m.unbalance, control)?);
+            parts.push(step(&m.unbalance)?);
         }
     }
-    let cases = report_cases(plan, &parts[1], &parts[2], control)?;
+    let (from, to) = share(cases_work(plan));
+    let cases = control.part(from, to, || {
+        report_cases(plan, &parts[1], &parts[2], control)
+    })?;
     let mut sets = vec![];
     for (_, sub) in &plan.sets {
-        sets.push(run_report(sub, control)?);
+        let (from, to) = share(report_work(sub));
+        sets.push(control.part(from, to, || run_report(sub, control))?);
     }
     Ok(Outcome::Report { parts, cases, sets })
+}
+
+/// A task's estimated work for the report's progress (at least one unit: every analysis
+/// takes some time).
+fn work(task: &Task) -> f64 {
+    task.cost.work.max(1.0)
+}
+
+fn cases_work(plan: &ReportPlan) -> f64 {
+    MAX_CASES as f64 * work(&plan.unbalance)
+}
+
+/// The work of everything [`run_report`] runs.
+fn report_work(plan: &ReportPlan) -> f64 {
+    let mut total = [&plan.map, &plan.statics, &plan.campbell, &plan.unbalance]
+        .into_iter()
+        .map(work)
+        .sum::<f64>();
+    for m in &plan.models {
+        total += work(&m.level1);
+        if !m.primary {
+            total += work(&m.campbell) + work(&m.unbalance);
+        }
+    }
+    total + cases_work(plan) + plan.sets.iter().map(|(_, s)| report_work(s)).sum::<f64>()
 }
 
 /// The report's unbalance cases (see [`cases`]): one per forward critical speed of its
@@ -521,7 +565,8 @@ fn report_cases(
             cost: plan.unbalance.cost,
             warnings: vec![],
         };
-        let response = run(&task, control)?;
+        let share = |k: usize| k as f64 / MAX_CASES as f64;
+        let response = control.part(share(i), share(i + 1), || run(&task, control))?;
         let Outcome::Unbalance {
             response: orbits, ..
         } = &response

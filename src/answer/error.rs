@@ -43,6 +43,8 @@ pub enum ApiError {
     TimeLimit(std::time::Duration),
     /// 503 with `Retry-After`: the job store cannot be reached.
     Unavailable(String),
+    /// 422: an `Idempotency-Key` already names a job submitted with another request.
+    KeyReused(String),
 }
 
 impl From<Invalid> for ApiError {
@@ -87,7 +89,7 @@ impl ApiError {
     pub fn status(&self) -> u16 {
         match self {
             ApiError::Malformed(_) => 400,
-            ApiError::Invalid(_) | ApiError::Unsolvable(_) => 422,
+            ApiError::Invalid(_) | ApiError::Unsolvable(_) | ApiError::KeyReused(_) => 422,
             ApiError::TooLarge(_) => 413,
             ApiError::Busy | ApiError::TimeLimit(_) | ApiError::Unavailable(_) => 503,
             ApiError::UnsupportedMediaType(_) => 415,
@@ -160,6 +162,12 @@ impl ApiError {
             ),
             ApiError::Stopped(d) => ("stopped", "Job stopped", d.clone(), vec![]),
             ApiError::Conflict(d) => ("conflict", "Conflict", d.clone(), vec![]),
+            ApiError::KeyReused(d) => (
+                "idempotency-key-reused",
+                "Idempotency key reused",
+                d.clone(),
+                vec![],
+            ),
             ApiError::UnsupportedMediaType(d) => (
                 "unsupported-media-type",
                 "Unsupported media type",

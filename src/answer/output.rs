@@ -10,20 +10,33 @@ use crate::model::api::{
     TimeResponseResponse, UnbalanceResponseResponse,
 };
 
-/// The result of an analysis, as its endpoint returns it.
+/// The result of an analysis, as its endpoint returns it: its JSON names the analysis in
+/// `analysis` (first), so that a job's result, which may be any of them, says which it is
+/// (the OpenAPI document's `JobResult` discriminates on it).
 #[derive(Debug, Clone, Serialize)]
-#[serde(untagged)]
+#[serde(tag = "analysis")]
 pub enum Output {
+    #[serde(rename = "modal")]
     Modal(ModalResponse),
+    #[serde(rename = "campbell")]
     Campbell(CampbellResponse),
+    #[serde(rename = "stability")]
     Stability(StabilityResponse),
+    #[serde(rename = "damping")]
     Damping(Box<DampingMatricesResponse>),
+    #[serde(rename = "time-response")]
     Time(TimeResponseResponse),
+    #[serde(rename = "unbalance-response")]
     Unbalance(UnbalanceResponseResponse),
+    #[serde(rename = "critical-speed-map")]
     CriticalMap(CriticalSpeedMapResponse),
+    #[serde(rename = "static")]
     Static(StaticResponse),
+    #[serde(rename = "level1")]
     Level1(Level1Response),
+    #[serde(rename = "frequency-response")]
     Frequency(FrequencyResponseResponse),
+    #[serde(rename = "report")]
     Report(Box<ReportResponse>),
 }
 

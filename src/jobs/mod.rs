@@ -33,7 +33,7 @@ use crate::model::Task;
 use crate::model::api::{JobInfo, JobStatus};
 use pool::WorkerPool;
 use runner::Runner;
-use store::{JobRow, NewJob, Stats, Store, StoreError, status_text};
+use store::{Filter, JobRow, NewJob, Stats, Store, StoreError, Submitted, status_text};
 pub use stored::{Stored, job_input, parse_stored, stopped};
 
 impl From<StoreError> for ApiError {
@@ -114,13 +114,16 @@ impl Jobs {
     }
 
     /// Admits a validated job to the shared queue (`input`: its JSON as received); returns its
-    /// status (queued).
+    /// status (queued). With an idempotency `key` (the client's, and the SHA-256 of the
+    /// request it came with) a job the key already names is returned instead (`true`: a
+    /// replay), and a different request under a key in use is refused.
     pub async fn submit(
         &self,
         pool: &WorkerPool,
         input: &Value,
         task: &Task,
-    ) -> Result<JobInfo, ApiError> {
+        key: Option<(&str, &str)>,
+    ) -> Result<(JobInfo, bool), ApiError> {
         if !self.runner.accepting() {
             return Err(ApiError::Busy);
         }
@@ -133,18 +136,34 @@ impl Jobs {
             input: &input,
             lane,
             memory_mib,
+            key,
         };
-        let row = self
-            .store
-            .submit(&job, self.queue)
-            .await?
-            .ok_or(ApiError::Busy)?;
+        let row = match self.store.submit(&job, self.queue).await? {
+            Submitted::Queued(row) => row,
+            Submitted::Full => return Err(ApiError::Busy),
+            Submitted::Existing {
+                row,
+                same_request: true,
+            } => return Ok((info(&row), true)),
+            Submitted::Existing { row, .. } => {
+                return Err(ApiError::KeyReused(format!(
+                    "the Idempotency-Key names job {} ({}), submitted with another request; \
+                     use a new key for a new job",
+                    row.id, row.analysis
+                )));
+            }
+        };
         tracing::info!(job = %id, analysis = task.name(), "job queued");
         // Start it here if this replica has room (oldest first), in a task of its own: a
         // client that goes away must not interrupt a claim.
         let runner = self.runner.clone();
         let _ = tokio::spawn(async move { runner.claim_pass().await }).await;
-        Ok(info(&row))
+        Ok((info(&row), false))
+    }
+
+    /// Jobs by `filter`, newest first.
+    pub async fn list(&self, filter: &Filter) -> Result<Vec<JobInfo>, ApiError> {
+        Ok(self.store.list(filter).await?.iter().map(info).collect())
     }
 
     pub async fn get(&self, id: &str) -> Result<JobInfo, ApiError> {

@@ -45,6 +45,10 @@ pub struct Config {
     pub database_url: Option<String>,
     /// How long a running job's lease lasts without a heartbeat.
     pub job_lease: Duration,
+    /// Browser origins that may call the API (CORS); none by default.
+    pub cors_origins: super::cors::Origins,
+    /// The URL clients reach the service at, for absolute problem types; `None`: the request's.
+    pub public_url: Option<String>,
 }
 
 /// One setting: its variable, its default (as text; `None`: computed) and what it means.
@@ -182,6 +186,16 @@ pub const SETTINGS: &[Setting] = &[
         meaning: "open connections; beyond it new ones get 503 and are closed",
     },
     Setting {
+        var: "WHIRL_CORS_ORIGINS",
+        default: "none",
+        meaning: "browser origins that may call the API (CORS), comma-separated (https://app.example.com,http://localhost:5173), or * for any; with none, no CORS headers and OPTIONS is 405",
+    },
+    Setting {
+        var: "WHIRL_PUBLIC_URL",
+        default: "the request's scheme and Host",
+        meaning: "URL clients reach the service at (https://whirl.example.com), the base of the absolute problem type URIs",
+    },
+    Setting {
         var: "WHIRL_LOG_FORMAT",
         default: "text",
         meaning: "`json` for structured logs (stderr; colours only on a terminal)",
@@ -225,6 +239,8 @@ impl Default for Config {
             data_dir: scratch_dir(),
             database_url: None,
             job_lease: Duration::from_secs(15),
+            cors_origins: super::cors::Origins::None,
+            public_url: None,
         }
     }
 }
@@ -378,6 +394,25 @@ impl Config {
                 );
             }
         };
+        let cors_origins = match get("WHIRL_CORS_ORIGINS") {
+            None => d.cors_origins,
+            Some(v) => super::cors::Origins::parse(&v)?,
+        };
+        let public_url = match get("WHIRL_PUBLIC_URL").filter(|v| !v.trim().is_empty()) {
+            None => None,
+            Some(u) => {
+                let u = u.trim().trim_end_matches('/');
+                let ok = (u.starts_with("https://") || u.starts_with("http://"))
+                    && !u.contains(['?', '#', ' '])
+                    && axum::http::Uri::try_from(u).is_ok();
+                if !ok {
+                    return Err(format!(
+                        "WHIRL_PUBLIC_URL={u:?}: expected an http(s) URL, e.g. https://whirl.example.com"
+                    ));
+                }
+                Some(u.to_string())
+            }
+        };
         Ok(Config {
             host: get("HOST").unwrap_or(d.host),
             port: num(&get, "PORT", d.port, 0)?,
@@ -410,6 +445,8 @@ impl Config {
             data_dir: get("WHIRL_DATA_DIR").map_or_else(|| "./data".into(), Into::into),
             database_url,
             job_lease: seconds(&get, "WHIRL_JOB_LEASE", d.job_lease, 1.0)?,
+            cors_origins,
+            public_url,
         })
     }
 }
@@ -457,9 +494,11 @@ mod tests {
             "WHIRL_DATA_DIR",
             "WHIRL_DATABASE_URL",
             "WHIRL_JOB_LEASE",
+            "WHIRL_CORS_ORIGINS",
+            "WHIRL_PUBLIC_URL",
         ] {
             assert_eq!(vars.iter().filter(|x| **x == v).count(), 1, "{v}");
         }
-        assert_eq!(vars.len(), 27);
+        assert_eq!(vars.len(), 29);
     }
 }

@@ -12,13 +12,16 @@
 //! replica's [`runner::Runner`] claims and runs them on its pool.
 
 pub mod config;
+pub mod cors;
 pub mod error;
 pub mod json;
 pub mod metrics;
 pub mod openapi;
+pub mod problems;
 pub mod results;
 pub mod routes;
 pub mod routes_audit;
+pub mod routes_jobs;
 pub mod server;
 pub mod task;
 
@@ -108,10 +111,14 @@ pub fn router(state: AppState) -> (Router, utoipa::openapi::OpenApi) {
         .routes(utoipa_axum::routes!(routes_audit::level1))
         .routes(utoipa_axum::routes!(routes_audit::frequency_response))
         .routes(utoipa_axum::routes!(routes_audit::report))
-        .routes(utoipa_axum::routes!(routes::submit_job))
+        .routes(utoipa_axum::routes!(
+            routes::submit_job,
+            routes_jobs::list_jobs
+        ))
         .routes(utoipa_axum::routes!(routes::get_job, routes::cancel_job))
         .routes(utoipa_axum::routes!(routes::job_result))
         .routes(utoipa_axum::routes!(routes::metrics))
+        .routes(utoipa_axum::routes!(problems::page))
         .with_state(state.clone())
         .split_for_parts();
     // After the routes: utoipa-axum replaces the component schemas as it registers each one.
@@ -128,7 +135,14 @@ pub fn router(state: AppState) -> (Router, utoipa::openapi::OpenApi) {
             Arc::new(allowed_methods(&api)),
             method_problems,
         ))
-        .layer(axum::middleware::from_fn_with_state(state, metrics::track))
+        .layer(axum::middleware::from_fn_with_state(
+            problems::PublicUrl(state.config.public_url.clone()),
+            problems::absolute_types,
+        ))
+        .layer(axum::middleware::from_fn_with_state(
+            state.clone(),
+            metrics::track,
+        ))
         .layer(CompressionLayer::new())
         .layer(
             TraceLayer::new_for_http()
@@ -145,6 +159,11 @@ pub fn router(state: AppState) -> (Router, utoipa::openapi::OpenApi) {
         )
         .layer(tower_http::request_id::PropagateRequestIdLayer::new(request_id.clone()))
         .layer(tower_http::request_id::SetRequestIdLayer::new(request_id, RequestIds));
+    // Outermost: a preflight is answered before any other layer sees it.
+    let router = match cors::layer(&state.config.cors_origins) {
+        Some(layer) => router.layer(layer),
+        None => router,
+    };
     (router, api)
 }
 

@@ -5,12 +5,18 @@
 //! one that takes JSON but not gzip gets it decompressed chunk by chunk. Either way the server
 //! holds one chunk of a result at a time, however large it is and however many are kept. A
 //! table or a plot is rendered from the whole output, as the synchronous endpoint does.
+//!
+//! A result never changes once stored, so it is cacheable for good: a weak `ETag` names the
+//! job and the representation (the formats `Accept` ranked, which decide the one served; weak
+//! because gzip and identity codings share it), with `Cache-Control: private, max-age=31536000,
+//! immutable`, and `If-None-Match` with a current tag answers 304 before the store's chunks
+//! are read or anything is rendered.
 
 use std::io::Write;
 use std::sync::Arc;
 
 use axum::body::{Body, Bytes};
-use axum::http::{HeaderValue, header};
+use axum::http::{HeaderMap, HeaderValue, StatusCode, header};
 use axum::response::{IntoResponse, Response};
 use futures_util::stream::{self, Stream};
 
@@ -20,6 +26,51 @@ use crate::jobs::store::{JobRow, Store};
 use crate::render::{Format, render};
 
 type Chunk = Result<Bytes, std::io::Error>;
+
+/// `private`: a result may be one client's (an authenticated service); a year, as for any
+/// immutable resource.
+const IMMUTABLE: &str = "private, max-age=31536000, immutable";
+
+/// The tag of job `id`'s result in the first of `formats` it has.
+pub fn etag(id: &str, formats: &[Format]) -> String {
+    let names: Vec<String> = formats
+        .iter()
+        .map(|f| format!("{f:?}").to_ascii_lowercase())
+        .collect();
+    format!("W/\"{id}.{}\"", names.join("+"))
+}
+
+/// Whether `If-None-Match` names `tag` (weak comparison, RFC 9110 13.1.2), or is `*`.
+pub fn matches(headers: &HeaderMap, tag: &str) -> bool {
+    let opaque = |t: &str| t.trim().trim_start_matches("W/").to_string();
+    let ours = opaque(tag);
+    headers
+        .get_all(header::IF_NONE_MATCH)
+        .iter()
+        .filter_map(|v| v.to_str().ok())
+        .flat_map(|v| v.split(','))
+        .any(|t| t.trim() == "*" || opaque(t) == ours)
+}
+
+/// 304 for a current copy: its tag and caching, no body.
+pub fn not_modified(tag: &str) -> Response {
+    let mut resp = StatusCode::NOT_MODIFIED.into_response();
+    immutable(&mut resp, tag);
+    resp
+}
+
+/// The caching headers of a result.
+pub fn immutable(resp: &mut Response, tag: &str) {
+    let h = resp.headers_mut();
+    if let Ok(v) = HeaderValue::from_str(tag) {
+        h.insert(header::ETAG, v);
+    }
+    h.insert(header::CACHE_CONTROL, HeaderValue::from_static(IMMUTABLE));
+    h.insert(
+        header::VARY,
+        HeaderValue::from_static("accept, accept-encoding"),
+    );
+}
 
 /// The result of a succeeded job (`row`) in the first acceptable format.
 pub async fn respond(

@@ -10,8 +10,9 @@ use axum::response::{IntoResponse, Response};
 use super::AppState;
 use super::error::ApiError;
 use super::json::ApiJson;
-use super::results;
+use super::problems::Base;
 use super::task::{negotiate, respond};
+use super::{results, routes_jobs};
 use crate::jobs;
 use crate::model::api::{
     CampbellResponse, DampingMatricesRequest, DampingMatricesResponse, JobInfo, JobRequest,
@@ -238,34 +239,49 @@ pub async fn unbalance_response(
 ///
 /// `{"analysis": "campbell", "input": {...}}`: the input is what `POST /v1/<analysis>` takes,
 /// validated now (422 at once). 202 with `Location: /v1/jobs/{id}` when admitted; 503 with
-/// `Retry-After` when the queue is full. An accepted job always runs.
+/// `Retry-After` when the queue is full. An accepted job always runs. With an
+/// `Idempotency-Key`, sending the same request again (a retry after a lost answer) answers
+/// with the job that key already names (`Idempotent-Replayed: true`) instead of a new job, as
+/// long as that job is kept; the same key with another request is a 422.
 #[utoipa::path(post, path = "/v1/jobs", tag = "jobs", request_body = JobRequest,
+    params(("Idempotency-Key" = Option<String>, Header,
+        description = "A key of the client's choosing (1 to 255 visible ASCII characters, e.g. a UUID) naming this submission")),
     responses(
         (status = 202, description = "Accepted; poll Location", body = JobInfo,
-         headers(("Location" = String, description = "URL of the job"))),
+         headers(("Location" = String, description = "URL of the job"),
+                 ("Idempotent-Replayed" = String, description = "`true` when the Idempotency-Key named this job already"))),
         (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
         (status = 408, description = "The body did not arrive in time", body = Problem, content_type = "application/problem+json"),
         (status = 413, description = "Body too large", body = Problem, content_type = "application/problem+json"),
         (status = 415, description = "The body is not declared as JSON", body = Problem, content_type = "application/problem+json"),
-        (status = 422, description = "Invalid input", body = Problem, content_type = "application/problem+json"),
+        (status = 422, description = "Invalid input, or an Idempotency-Key used with another request", body = Problem, content_type = "application/problem+json"),
         (status = 503, description = "Queue full, or the job store unreachable; see Retry-After", body = Problem, content_type = "application/problem+json")))]
 pub async fn submit_job(
     State(st): State<AppState>,
+    headers: HeaderMap,
+    base: Base,
     ApiJson(req): ApiJson<JobRequest>,
 ) -> Result<Response, ApiError> {
+    let key = routes_jobs::idempotency_key(&headers)?;
     let input = jobs::job_input(req.analysis, req.input.clone()).map_err(in_input)?;
     let task = input
         .parse(&st.config.limits())
         .map_err(|e| in_input(e.into()))?;
-    let info = st
+    let sha = key.as_ref().map(|_| routes_jobs::request_sha256(&req));
+    let keyed = key.as_deref().zip(sha.as_deref());
+    let (info, replayed) = st
         .jobs
-        .submit(&st.pool, &req.input, &task)
+        .submit(&st.pool, &req.input, &task, keyed)
         .await
         .map_err(in_input)?;
     let location = format!("/v1/jobs/{}", info.id);
-    let mut resp = (StatusCode::ACCEPTED, Json(info)).into_response();
+    let mut resp = (StatusCode::ACCEPTED, Json(base.job(info))).into_response();
     if let Ok(v) = HeaderValue::from_str(&location) {
         resp.headers_mut().insert(header::LOCATION, v);
+    }
+    if replayed {
+        resp.headers_mut()
+            .insert("idempotent-replayed", HeaderValue::from_static("true"));
     }
     Ok(resp)
 }
@@ -296,18 +312,25 @@ fn in_input(e: ApiError) -> ApiError {
         (status = 503, description = "The job store is unreachable; see Retry-After", body = Problem, content_type = "application/problem+json")))]
 pub async fn get_job(
     State(st): State<AppState>,
+    base: Base,
     Path(id): Path<String>,
 ) -> Result<Json<JobInfo>, ApiError> {
-    st.jobs.get(&id).await.map(Json)
+    st.jobs.get(&id).await.map(|j| Json(base.job(j)))
 }
 
 /// A succeeded job's result: the body its synchronous endpoint returns (JSON, CSV or SVG by
-/// `Accept`); 409 before it has succeeded.
+/// `Accept`); 409 before it has succeeded. A result never changes: it carries an `ETag` and
+/// `Cache-Control: immutable`, and `If-None-Match` with that tag answers 304 without a body.
 #[utoipa::path(get, path = "/v1/jobs/{id}/result", tag = "jobs",
-    params(("id" = String, Path, description = "Job id")),
+    params(("id" = String, Path, description = "Job id"),
+        ("If-None-Match" = Option<String>, Header, description = "ETags of copies the client holds")),
     responses(
         (status = 200, description = "The analysis result",
-         content((Object = "application/json"), (String = "text/csv"), (String = "image/svg+xml"))),
+         content((Object = "application/json"), (String = "text/csv"), (String = "image/svg+xml")),
+         headers(("ETag" = String, description = "The result in this representation (weak: the same for every content coding)"),
+                 ("Cache-Control" = String, description = "`private, max-age=31536000, immutable`"))),
+        (status = 304, description = "Not modified: the copy whose ETag was sent is current",
+         headers(("ETag" = String, description = "The result's tag"))),
         (status = 404, description = "Unknown or forgotten job", body = Problem, content_type = "application/problem+json"),
         (status = 406, description = "Format not available", body = Problem, content_type = "application/problem+json"),
         (status = 409, description = "Not succeeded (yet)", body = Problem, content_type = "application/problem+json"),
@@ -319,7 +342,14 @@ pub async fn job_result(
 ) -> Result<Response, ApiError> {
     let formats = negotiate(&headers)?;
     let row = st.jobs.result(&id).await?;
-    results::respond(st.jobs.store.clone(), row, formats, accepts_gzip(&headers)).await
+    let tag = results::etag(&row.id, &formats);
+    if results::matches(&headers, &tag) {
+        return Ok(results::not_modified(&tag));
+    }
+    let mut resp =
+        results::respond(st.jobs.store.clone(), row, formats, accepts_gzip(&headers)).await?;
+    results::immutable(&mut resp, &tag);
+    Ok(resp)
 }
 
 /// Whether `Accept-Encoding` takes gzip (q > 0).
@@ -352,12 +382,13 @@ fn accepts_gzip(headers: &HeaderMap) -> bool {
         (status = 503, description = "The job store is unreachable; see Retry-After", body = Problem, content_type = "application/problem+json")))]
 pub async fn cancel_job(
     State(st): State<AppState>,
+    base: Base,
     Path(id): Path<String>,
 ) -> Result<Json<JobInfo>, ApiError> {
     st.jobs
         .cancel(&id, "cancelled by the client")
         .await
-        .map(Json)
+        .map(|j| Json(base.job(j)))
 }
 
 /// Prometheus metrics.

@@ -70,6 +70,46 @@ pub struct NewJob<'a> {
     pub input: &'a str,
     pub lane: Lane,
     pub memory_mib: u64,
+    /// The client's `Idempotency-Key` and the SHA-256 (hex) of the request it came with.
+    pub key: Option<(&'a str, &'a str)>,
+}
+
+/// What became of a submission.
+#[derive(Debug, Clone)]
+pub enum Submitted {
+    /// Queued now.
+    Queued(Box<JobRow>),
+    /// The queue is full.
+    Full,
+    /// Its idempotency key names a job already: that job, and whether it came with the same
+    /// request.
+    Existing {
+        row: Box<JobRow>,
+        same_request: bool,
+    },
+}
+
+/// What an engine's insert did.
+pub(crate) enum Inserted {
+    Row(Box<JobRow>),
+    Full,
+    /// The idempotency key is another job's (a concurrent submission with the same key).
+    KeyTaken,
+}
+
+/// Whether an insert failed on a unique index (the idempotency key).
+pub(crate) fn key_taken(e: &sqlx::Error) -> bool {
+    e.as_database_error()
+        .is_some_and(|d| d.is_unique_violation())
+}
+
+/// Which jobs `GET /v1/jobs` lists: newest first, those older than `before` (an id).
+#[derive(Debug, Clone, Default)]
+pub struct Filter {
+    pub status: Option<JobStatus>,
+    pub analysis: Option<String>,
+    pub before: Option<String>,
+    pub limit: u32,
 }
 
 /// A job as the API shows it.
@@ -251,16 +291,30 @@ impl MigrationSource<'static> for Embedded {
     }
 }
 
-const POSTGRES_MIGRATIONS: Embedded = Embedded(&[(
-    1,
-    "jobs",
-    include_str!("../../../migrations/postgres/0001_jobs.sql"),
-)]);
-const SQLITE_MIGRATIONS: Embedded = Embedded(&[(
-    1,
-    "jobs",
-    include_str!("../../../migrations/sqlite/0001_jobs.sql"),
-)]);
+const POSTGRES_MIGRATIONS: Embedded = Embedded(&[
+    (
+        1,
+        "jobs",
+        include_str!("../../../migrations/postgres/0001_jobs.sql"),
+    ),
+    (
+        3,
+        "job keys",
+        include_str!("../../../migrations/postgres/0003_job_keys.sql"),
+    ),
+]);
+const SQLITE_MIGRATIONS: Embedded = Embedded(&[
+    (
+        1,
+        "jobs",
+        include_str!("../../../migrations/sqlite/0001_jobs.sql"),
+    ),
+    (
+        3,
+        "job keys",
+        include_str!("../../../migrations/sqlite/0003_job_keys.sql"),
+    ),
+]);
 
 async fn migrator(m: Embedded) -> Result<Migrator, StoreError> {
     Ok(Migrator::new(m).await?)
@@ -361,13 +415,43 @@ impl Store {
         on_engine!(self, e => e.ping())
     }
 
-    /// Inserts a queued job unless `queue` jobs already wait; `None` when the queue is full.
-    pub async fn submit(
-        &self,
-        job: &NewJob<'_>,
-        queue: usize,
-    ) -> Result<Option<JobRow>, StoreError> {
-        on_engine!(self, e => e.submit(job, queue))
+    /// Inserts a queued job unless `queue` jobs already wait, or its idempotency key names a
+    /// job already.
+    pub async fn submit(&self, job: &NewJob<'_>, queue: usize) -> Result<Submitted, StoreError> {
+        for _ in 0..2 {
+            if let Some((key, sha)) = job.key
+                && let Some((row, stored)) = self.keyed(key).await?
+            {
+                let same_request = stored.as_deref() == Some(sha);
+                return Ok(Submitted::Existing {
+                    row: Box::new(row),
+                    same_request,
+                });
+            }
+            let inserted: Result<Inserted, StoreError> =
+                on_engine!(self, e => e.submit(job, queue));
+            let inserted = inserted?;
+            match inserted {
+                Inserted::Row(row) => return Ok(Submitted::Queued(row)),
+                Inserted::Full => return Ok(Submitted::Full),
+                // Another request with the same key won the insert: answer with its job.
+                Inserted::KeyTaken => continue,
+            }
+        }
+        Err(StoreError(
+            "job store: the idempotency key was taken and then forgotten".into(),
+        ))
+    }
+
+    /// The job an idempotency key names (however old: a key is free again once its job is
+    /// deleted), with the hash of its request.
+    async fn keyed(&self, key: &str) -> Result<Option<(JobRow, Option<String>)>, StoreError> {
+        on_engine!(self, e => e.keyed(key))
+    }
+
+    /// Jobs by `filter`, newest first (finished ones within the retention).
+    pub async fn list(&self, filter: &Filter) -> Result<Vec<JobRow>, StoreError> {
+        on_engine!(self, e => e.list(filter))
     }
 
     /// A job, unless unknown or finished longer ago than the retention.

@@ -9,8 +9,9 @@ use sqlx::migrate::Migrator;
 use sqlx::postgres::{PgConnectOptions, PgPool, PgPoolOptions, PgRow};
 
 use super::{
-    CHUNK, Claimed, Ending, JobRow, NewJob, Reaped, Retention, Room, Stats, StoreError,
-    ending_parts, lane_text, ms, parse_lane, parse_problem, parse_status,
+    CHUNK, Claimed, Ending, Filter, Inserted, JobRow, NewJob, Reaped, Retention, Room, Stats,
+    StoreError, ending_parts, key_taken, lane_text, ms, parse_lane, parse_problem, parse_status,
+    status_text,
 };
 
 /// Connections per replica.
@@ -87,11 +88,7 @@ impl Postgres {
             .map(|_| ())
     }
 
-    pub async fn submit(
-        &self,
-        job: &NewJob<'_>,
-        queue: usize,
-    ) -> Result<Option<JobRow>, sqlx::Error> {
+    pub async fn submit(&self, job: &NewJob<'_>, queue: usize) -> Result<Inserted, sqlx::Error> {
         let mut tx = self.pool.begin().await?;
         sqlx::query("SELECT pg_advisory_xact_lock($1)")
             .bind(ADMISSION_LOCK)
@@ -101,21 +98,59 @@ impl Postgres {
             .fetch_one(&mut *tx)
             .await?;
         if waiting >= queue as i64 {
-            return Ok(None);
+            return Ok(Inserted::Full);
         }
         let r = sqlx::query(&format!(
-            "INSERT INTO jobs (id, analysis, input, lane, memory_mib, status) \
-             VALUES ($1, $2, $3, $4, $5, 'queued') RETURNING {ROW}"
+            "INSERT INTO jobs (id, analysis, input, lane, memory_mib, status, idempotency_key, \
+             request_sha256) VALUES ($1, $2, $3, $4, $5, 'queued', $6, $7) RETURNING {ROW}"
         ))
         .bind(job.id)
         .bind(job.analysis)
         .bind(job.input)
         .bind(lane_text(job.lane))
         .bind(job.memory_mib as i64)
+        .bind(job.key.map(|k| k.0))
+        .bind(job.key.map(|k| k.1))
         .fetch_one(&mut *tx)
-        .await?;
+        .await;
+        let r = match r {
+            Ok(r) => r,
+            Err(e) if key_taken(&e) => return Ok(Inserted::KeyTaken),
+            Err(e) => return Err(e),
+        };
         tx.commit().await?;
-        row(&r).map(Some)
+        row(&r).map(|r| Inserted::Row(Box::new(r)))
+    }
+
+    pub async fn keyed(&self, key: &str) -> Result<Option<(JobRow, Option<String>)>, sqlx::Error> {
+        sqlx::query(&format!(
+            "SELECT {ROW}, request_sha256 FROM jobs WHERE idempotency_key = $1"
+        ))
+        .bind(key)
+        .fetch_optional(&self.pool)
+        .await?
+        .map(|r| Ok((row(&r)?, r.try_get("request_sha256")?)))
+        .transpose()
+    }
+
+    pub async fn list(&self, f: &Filter) -> Result<Vec<JobRow>, sqlx::Error> {
+        sqlx::query(&format!(
+            "SELECT {ROW} FROM jobs WHERE ($1::text IS NULL OR status = $1) \
+             AND ($2::text IS NULL OR analysis = $2) AND ($3::text IS NULL OR id < $3) \
+             AND (finished_at IS NULL \
+                  OR finished_at > now() - $4::float8 * interval '1 millisecond') \
+             ORDER BY id DESC LIMIT $5"
+        ))
+        .bind(f.status.map(status_text))
+        .bind(f.analysis.as_deref())
+        .bind(f.before.as_deref())
+        .bind(ms(self.retention.age))
+        .bind(i64::from(f.limit))
+        .fetch_all(&self.pool)
+        .await?
+        .iter()
+        .map(row)
+        .collect()
     }
 
     pub async fn get(&self, id: &str) -> Result<Option<JobRow>, sqlx::Error> {

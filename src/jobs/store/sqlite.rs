@@ -14,8 +14,9 @@ use sqlx::sqlite::{
 };
 
 use super::{
-    CHUNK, Claimed, Ending, JobRow, NewJob, Reaped, Retention, Room, Stats, StoreError,
-    ending_parts, lane_text, ms, now_ms, parse_lane, parse_problem, parse_status,
+    CHUNK, Claimed, Ending, Filter, Inserted, JobRow, NewJob, Reaped, Retention, Room, Stats,
+    StoreError, ending_parts, key_taken, lane_text, ms, now_ms, parse_lane, parse_problem,
+    parse_status, status_text,
 };
 
 /// The database file in the data directory.
@@ -80,15 +81,12 @@ impl Sqlite {
             .map(|_| ())
     }
 
-    pub async fn submit(
-        &self,
-        job: &NewJob<'_>,
-        queue: usize,
-    ) -> Result<Option<JobRow>, sqlx::Error> {
+    pub async fn submit(&self, job: &NewJob<'_>, queue: usize) -> Result<Inserted, sqlx::Error> {
         // One statement on the one connection: the count and the insert are atomic.
-        sqlx::query(&format!(
-            "INSERT INTO jobs (id, analysis, input, lane, memory_mib, status, created_at) \
-             SELECT ?1, ?2, ?3, ?4, ?5, 'queued', ?6 \
+        let r = sqlx::query(&format!(
+            "INSERT INTO jobs (id, analysis, input, lane, memory_mib, status, created_at, \
+             idempotency_key, request_sha256) \
+             SELECT ?1, ?2, ?3, ?4, ?5, 'queued', ?6, ?8, ?9 \
              WHERE (SELECT count(*) FROM jobs WHERE status = 'queued') < ?7 RETURNING {ROW}"
         ))
         .bind(job.id)
@@ -98,11 +96,45 @@ impl Sqlite {
         .bind(job.memory_mib as i64)
         .bind(now_ms())
         .bind(queue as i64)
+        .bind(job.key.map(|k| k.0))
+        .bind(job.key.map(|k| k.1))
+        .fetch_optional(&self.pool)
+        .await;
+        match r {
+            Ok(Some(r)) => row(&r).map(|r| Inserted::Row(Box::new(r))),
+            Ok(None) => Ok(Inserted::Full),
+            Err(e) if key_taken(&e) => Ok(Inserted::KeyTaken),
+            Err(e) => Err(e),
+        }
+    }
+
+    pub async fn keyed(&self, key: &str) -> Result<Option<(JobRow, Option<String>)>, sqlx::Error> {
+        sqlx::query(&format!(
+            "SELECT {ROW}, request_sha256 FROM jobs WHERE idempotency_key = ?1"
+        ))
+        .bind(key)
         .fetch_optional(&self.pool)
         .await?
-        .as_ref()
-        .map(row)
+        .map(|r| Ok((row(&r)?, r.try_get("request_sha256")?)))
         .transpose()
+    }
+
+    pub async fn list(&self, f: &Filter) -> Result<Vec<JobRow>, sqlx::Error> {
+        sqlx::query(&format!(
+            "SELECT {ROW} FROM jobs WHERE (?1 IS NULL OR status = ?1) \
+             AND (?2 IS NULL OR analysis = ?2) AND (?3 IS NULL OR id < ?3) \
+             AND (finished_at IS NULL OR finished_at > ?4) ORDER BY id DESC LIMIT ?5"
+        ))
+        .bind(f.status.map(status_text))
+        .bind(f.analysis.as_deref())
+        .bind(f.before.as_deref())
+        .bind(now_ms() - ms(self.retention.age))
+        .bind(i64::from(f.limit))
+        .fetch_all(&self.pool)
+        .await?
+        .iter()
+        .map(row)
+        .collect()
     }
 
     pub async fn get(&self, id: &str) -> Result<Option<JobRow>, sqlx::Error> {

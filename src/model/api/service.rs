@@ -70,6 +70,16 @@ pub enum JobStatus {
     Cancelled,
 }
 
+/// A page of jobs, newest first (`GET /v1/jobs`).
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct JobList {
+    pub jobs: Vec<JobInfo>,
+    /// The next page's URL (older jobs), also in `Link: <...>; rel="next"`; absent on the
+    /// last page.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub next: Option<String>,
+}
+
 /// A job's status.
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
 pub struct JobInfo {

@@ -10,8 +10,10 @@
 //!   `oneOf` of references with a `discriminator`. `viscous` and `hysteretic`, which share
 //!   the Rust struct `NoOptions`, get a schema each.
 //! - Jobs: `POST /v1/jobs` is a union on `analysis` of `<Analysis>Job` objects pairing each
-//!   analysis with the request schema of its endpoint, and a job's result is any of the
-//!   endpoints' answers (`anyOf`: a result does not name its analysis; the job does).
+//!   analysis with the request schema of its endpoint, and a job's result (`JobResult`) is a
+//!   union on `analysis` of `<Analysis>Result` objects: each endpoint's answer, which names
+//!   its analysis in `analysis` (required there, optional in the answer's own schema because
+//!   a report's parts are answers without it).
 //! - Inputs: every object schema a request reaches gets `additionalProperties: false`, as the
 //!   server refuses unknown fields everywhere (variant structs cannot say so to serde, because
 //!   of the tag beside their fields).
@@ -287,14 +289,45 @@ fn jobs(doc: &mut Value) {
         }
         all.insert("JobRequest".into(), new);
     }
-    let answers: BTreeSet<&String> = analyses.iter().map(|(_, _, r)| r).collect();
-    let results: Vec<Value> = answers.into_iter().map(|r| reference(r)).collect();
+    // Every answer names its analysis in `analysis` (the report's parts, which are answers
+    // too, do not): optional in the answer's schema, and the discriminator of `JobResult`,
+    // whose variants `<Analysis>Result` are the answers with `analysis` required.
+    let mut refs = vec![];
+    let mut mapping = Map::new();
+    for (a, _, answer) in &analyses {
+        let tag = json!({
+            "type": "string",
+            "enum": [a],
+            "description": "The analysis that answered (absent in a report's parts).",
+        });
+        let schema = all
+            .get_mut(answer)
+            .unwrap_or_else(|| panic!("no answer schema {answer}"));
+        let mut props = Map::new();
+        props.insert("analysis".into(), tag);
+        if let Some(Value::Object(old)) = schema.get_mut("properties").map(Value::take) {
+            props.extend(old.into_iter().filter(|(k, _)| k != "analysis"));
+        }
+        schema["properties"] = Value::Object(props);
+        let description = format!("A succeeded `{a}` job's result: the answer of `POST /v1/{a}`.");
+        let variant = with_tag(schema.clone(), "analysis", a, Some(json!(description)));
+        let name = format!("{}Result", camel(a));
+        assert!(
+            all.get(&name)
+                .is_none_or(|s| s["properties"]["analysis"]["enum"] == json!([a])),
+            "the result schema {name} would replace another schema"
+        );
+        all.insert(name.clone(), variant);
+        mapping.insert(a.clone(), json!(format!("{REF}{name}")));
+        refs.push(reference(&name));
+    }
     all.insert(
         "JobResult".into(),
         json!({
-            "anyOf": results,
+            "oneOf": refs,
+            "discriminator": { "propertyName": "analysis", "mapping": mapping },
             "description": "A succeeded job's result: the answer of `POST /v1/<analysis>` for the \
-                job's `analysis`.",
+                job's `analysis`, which it names.",
         }),
     );
     let media =
