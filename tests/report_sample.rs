@@ -365,6 +365,7 @@ pub fn unbalance_data() -> UnbalanceResponseResponse {
     UnbalanceResponseResponse {
         speeds: s,
         nodes,
+        reduction: None,
         note: "Synchronous response; hysteretic damping at omega = Omega.".into(),
         warnings: vec![],
     }
@@ -412,6 +413,7 @@ pub fn frequency_data() -> FrequencyResponseResponse {
     let amp: Vec<f64> = f.iter().map(|&w| h(w).norm()).collect();
     let phase: Vec<f64> = f.iter().map(|&w| h(w).arg()).collect();
     FrequencyResponseResponse {
+        reduction: None,
         speed: 300.0,
         input_node: 5,
         output_node: 5,

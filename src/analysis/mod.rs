@@ -9,6 +9,7 @@ pub mod modal;
 pub mod nearest;
 pub mod poles;
 pub mod reduction;
+pub mod response;
 pub mod roots;
 pub mod run;
 pub mod stability;

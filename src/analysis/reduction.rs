@@ -128,19 +128,7 @@ pub fn reduce(
     // The static response to a unit load where the supports act: with heavy support damping
     // the damped modes pivot about the supports, which the free modes alone span poorly; for
     // supports in the general form it also spans their anisotropy and cross-coupling.
-    let mut loads = loads.to_vec();
-    for p in &system.supports {
-        loads.extend(p.at.weights().iter().map(|&(d, _)| d));
-    }
-    for d in 0..n {
-        let at = |a: &crate::linalg::RMat| (0..n).any(|j| a[(d, j)] != 0.0);
-        if at(&system.damping_nonrotating) || at(&system.hysteretic_nonrotating) {
-            loads.push(d);
-        }
-    }
-    loads.sort_unstable();
-    loads.dedup();
-    let loads = &loads[..];
+    let loads = &with_supports(system, loads)[..];
     let inside = |v: &[c64]| -> Vec<c64> {
         v.iter()
             .cloned()
@@ -202,6 +190,25 @@ pub fn reduce(
         current = if m < n { candidate(m) } else { None };
     }
     Ok(None)
+}
+
+/// `loads` with the coordinates where supports and nonrotating dampers act, sorted, once each:
+/// where a reduction's basis carries the static responses to unit loads.
+pub fn with_supports(system: &RotorSystem, loads: &[usize]) -> Vec<usize> {
+    let n = system.n();
+    let mut loads = loads.to_vec();
+    for p in &system.supports {
+        loads.extend(p.at.weights().iter().map(|&(d, _)| d));
+    }
+    for d in 0..n {
+        let at = |a: &crate::linalg::RMat| (0..n).any(|j| a[(d, j)] != 0.0);
+        if at(&system.damping_nonrotating) || at(&system.hysteretic_nonrotating) {
+            loads.push(d);
+        }
+    }
+    loads.sort_unstable();
+    loads.dedup();
+    loads
 }
 
 /// Largest distance from a value in `from` to the nearest in `to`, as `criterion` measures it.

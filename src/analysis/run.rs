@@ -4,8 +4,9 @@
 use super::AnalysisError;
 use super::audit::cases::{self, Assessment, Case};
 use super::audit::critical_map::{self, CriticalMap};
-use super::audit::frequency::{self, Excitation};
-use super::audit::level1::{self, ForwardPole, Level1};
+use super::audit::frequency::Excitation;
+use super::audit::level1::{ForwardPole, Level1};
+use super::audit::level1_reduced;
 use super::audit::level2;
 use super::audit::peaks::{self, Peak};
 use super::audit::placement;
@@ -15,9 +16,10 @@ use super::control::Control;
 use super::criticals::Critical;
 use super::modal::{self, ModalResult};
 use super::poles::Whirl;
+use super::response::{self, ResponseReduction};
 use super::stability::{self, Threshold};
 use super::time::{self, TimeError, TimeResult};
-use super::unbalance::{self, Orbit, SteadyUnbalance};
+use super::unbalance::{Orbit, SteadyUnbalance};
 use crate::damping::report::{self, ModelMatrices, ReportError};
 use crate::damping::{DampedModel, DampingError};
 use crate::fem::modal::ModalError;
@@ -49,6 +51,8 @@ pub enum Outcome {
         peaks: Vec<Vec<Peak>>,
         range: Option<(f64, f64)>,
         model: &'static str,
+        /// The checked modal reduction solved; `None` for the full model.
+        reduction: Option<ResponseReduction>,
     },
     CriticalMap {
         stiffness: Vec<f64>,
@@ -81,6 +85,7 @@ pub enum Outcome {
         frequencies: Vec<f64>,
         response: Vec<Orbit>,
         model: &'static str,
+        reduction: Option<ResponseReduction>,
     },
     /// The report's parts, in the order of its plan: map, static, Campbell, unbalance, then
     /// per compared model its Campbell, Level I and unbalance; and its unbalance cases.
@@ -246,6 +251,7 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
             unbalances,
             nodes,
             range,
+            reduce,
         } => {
             let (system, damped) = build(model)?;
             let dof = |n: usize| time::translation(&system, n);
@@ -258,17 +264,20 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                 })
                 .collect();
             let dofs: Vec<usize> = nodes.iter().map(|&n| dof(n)).collect();
-            let response = unbalance::unbalance_response(
+            let grid = speeds.as_slice();
+            let (response, solved) = response::unbalance_sweep(
                 &system,
+                &model.damping,
                 &damped,
-                speeds.as_slice(),
+                grid,
                 &loads,
                 &dofs,
+                *reduce,
                 control,
             )?;
-            let grid = speeds.as_slice();
             // Refinement costs at most about two sweeps more; further peaks are interpolated.
             let mut budget = 2 * grid.len() + 2 * peaks::SOLVES_PER_PEAK;
+            let n = system.n();
             let peaks = dofs
                 .iter()
                 .enumerate()
@@ -276,15 +285,8 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                     let amp: Vec<f64> = response.iter().map(|o| o[k].major()).collect();
                     let mut eval = |w: f64| -> Result<f64, AnalysisError> {
                         control.check()?;
-                        let o = unbalance::unbalance_response(
-                            &system,
-                            &damped,
-                            &[w],
-                            &loads,
-                            &[d],
-                            &Control::default(),
-                        )?;
-                        Ok(o[0][0].major())
+                        let force = response::unbalance_force(&loads, n, w);
+                        Ok(solved.orbits(w, w, &force, &[d])?[0].major())
                     };
                     peaks::peaks(grid, &amp, &mut eval, &mut budget)
                 })
@@ -296,6 +298,7 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                 peaks,
                 range: *range,
                 model: model.damping.name(),
+                reduction: solved.reduction().cloned(),
             })
         }
         TaskKind::CriticalMap {
@@ -345,21 +348,18 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                 .iter()
                 .map(|&(n, w)| (time::translation(&system, n), w))
                 .collect();
-            let qs = if qs.is_empty() {
-                level1::auto_range(&system, &model.damping, *speed, &placing, 21, control)
-                    .map_err(|e| rigid_body(e, &model.rotor))?
-            } else {
-                qs.clone()
-            };
-            let result = level1::level1(&system, &model.damping, *speed, &placing, &qs, control)
-                .map_err(|e| rigid_body(e, &model.rotor))?;
-            let qa = match qa {
-                Some(q) => Some((
-                    *q,
-                    level1::FirstForward::new(&system, &model.damping, *speed, &placing)?.at(*q)?,
-                )),
-                None => None,
-            };
+            let screened = level1_reduced::level1_reduced(
+                &system,
+                &model.damping,
+                *speed,
+                &placing,
+                qs,
+                21,
+                *qa,
+                control,
+            )
+            .map_err(|e| rigid_body(e, &model.rotor))?;
+            let (qs, result, qa) = (screened.qs, screened.result, screened.qa);
             let rigid = match &model.rotor {
                 Rotor::Beam(b) => Some(critical_map::rigid_first(b)?),
                 _ => None,
@@ -400,16 +400,20 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
             input,
             output,
             frequencies,
+            reduce,
         } => {
             let (system, damped) = build(model)?;
             let dof = |n: usize| time::translation(&system, n);
-            let response = frequency::frequency_response(
+            let force = input.1.at(dof(input.0), system.n());
+            let (response, solved) = response::frequency_sweep(
                 &system,
+                &model.damping,
                 &damped,
                 *speed,
-                (dof(input.0), input.1),
+                &force,
                 dof(*output),
                 frequencies,
+                *reduce,
                 control,
             )?;
             Ok(Outcome::Frequency {
@@ -419,6 +423,7 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                 frequencies: frequencies.clone(),
                 response,
                 model: model.damping.name(),
+                reduction: solved.reduction().cloned(),
             })
         }
         TaskKind::Report(plan) => run_report(plan, control),
@@ -561,6 +566,7 @@ fn report_cases(
                 unbalances: placed.iter().map(|p| (p.node, p.amount, p.phase)).collect(),
                 nodes: nodes.clone(),
                 range: *range,
+                reduce: true,
             },
             cost: plan.unbalance.cost,
             warnings: vec![],

@@ -150,6 +150,20 @@ pub fn reduction(d: &crate::analysis::reduction::Reduction) -> api::ReductionInf
     }
 }
 
+pub fn response_reduction(
+    d: &crate::analysis::response::ResponseReduction,
+) -> api::ResponseReductionInfo {
+    api::ResponseReductionInfo {
+        modes: d.modes,
+        vectors: d.vectors,
+        band: d.band,
+        states: d.states,
+        full_states: d.full_states,
+        checked: d.checked.clone(),
+        max_relative_error: d.max_relative_error,
+    }
+}
+
 pub fn stability(
     t: Option<&Threshold>,
     speeds: &[f64],
@@ -386,6 +400,7 @@ pub fn unbalance_response(
     };
     api::UnbalanceResponseResponse {
         warnings: vec![],
+        reduction: None,
         speeds: speeds.to_vec(),
         nodes: nodes
             .iter()

@@ -185,6 +185,7 @@ pub fn frequency(
         forward: col(&|o| o.a.norm()),
         backward: col(&|o| o.b.norm()),
         model: model.into(),
+        reduction: None,
         warnings: vec![],
     }
 }

@@ -53,8 +53,10 @@ impl Output {
                 peaks,
                 range,
                 model,
+                reduction,
             } => {
                 let mut u = convert::unbalance_response(&speeds, &nodes, &response, model);
+                u.reduction = reduction.as_ref().map(convert::response_reduction);
                 for (n, p) in u.nodes.iter_mut().zip(&peaks) {
                     n.peaks = convert_audit::peaks(p, range);
                 }
@@ -91,14 +93,13 @@ impl Output {
                 frequencies,
                 response,
                 model,
-            } => Output::Frequency(convert_audit::frequency(
-                speed,
-                input,
-                output,
-                &frequencies,
-                &response,
-                model,
-            )),
+                reduction,
+            } => Output::Frequency({
+                let mut f =
+                    convert_audit::frequency(speed, input, output, &frequencies, &response, model);
+                f.reduction = reduction.as_ref().map(convert::response_reduction);
+                f
+            }),
             Outcome::Report { parts, cases, sets } => {
                 let TaskKind::Report(plan) = &task.kind else {
                     return Err(ApiError::Internal(

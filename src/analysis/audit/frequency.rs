@@ -84,7 +84,7 @@ impl Excitation {
 /// The rotor realized at one spin speed, with what every excitation frequency shares: the
 /// state matrix `A(Omega)` (linear models) or the spun gyroscopic and circulatory matrices
 /// (hysteretic).
-struct Steady {
+pub(crate) struct Steady {
     n: usize,
     speed: f64,
     r: Realized,
@@ -98,7 +98,7 @@ enum Parts {
 }
 
 impl Steady {
-    fn at(system: &RotorSystem, model: &DampedModel, speed: f64) -> Self {
+    pub(crate) fn at(system: &RotorSystem, model: &DampedModel, speed: f64) -> Self {
         let r = Realized::at(system, speed);
         let parts = match &model.kind {
             ModelKind::Linear(state) => Parts::Linear(state.at(speed)),
@@ -169,12 +169,23 @@ impl Steady {
     }
 
     /// The steady orbit of every degree of freedom in `out` under `force` at `omega`.
-    fn orbits(
+    pub(crate) fn orbits(
         &self,
         omega: f64,
         force: &Harmonic,
         out: &[usize],
     ) -> Result<Vec<Orbit>, AnalysisError> {
+        let (a, b) = self.amplitudes(omega, force)?;
+        Ok(out.iter().map(|&d| Orbit { a: a[d], b: b[d] }).collect())
+    }
+
+    /// The forward and backward amplitudes `(a, b)` of every degree of freedom under `force`
+    /// at `omega`.
+    pub(crate) fn amplitudes(
+        &self,
+        omega: f64,
+        force: &Harmonic,
+    ) -> Result<(Vec<c64>, Vec<c64>), AnalysisError> {
         let n = self.n;
         let zero = c64::new(0.0, 0.0);
         let any = |v: &[c64]| v.iter().any(|x| *x != zero);
@@ -207,7 +218,7 @@ impl Steady {
                 (a, b)
             }
         };
-        Ok(out.iter().map(|&d| Orbit { a: a[d], b: b[d] }).collect())
+        Ok((a, b))
     }
 }
 

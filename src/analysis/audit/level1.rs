@@ -133,7 +133,8 @@ pub struct FirstForward<'a> {
     system: &'a RotorSystem,
     damping: &'a DampingModel,
     speed: f64,
-    at: &'a Placing,
+    /// Where each share acts in the system's coordinates, its node, the share.
+    at: Vec<(Placement, usize, f64)>,
     reference: Option<Pole>,
 }
 
@@ -142,7 +143,22 @@ impl<'a> FirstForward<'a> {
         system: &'a RotorSystem,
         damping: &'a DampingModel,
         speed: f64,
-        at: &'a Placing,
+        at: &Placing,
+    ) -> Result<Self, AnalysisError> {
+        let at = at
+            .iter()
+            .map(|&(dof, w)| (Placement::Dof(dof), system.dofs[dof].node, w))
+            .collect();
+        Self::placed(system, damping, speed, at)
+    }
+
+    /// The first forward mode of a system whose cross-coupling acts at `at`: `(placement,
+    /// node, share)` (a reduced system's translations are rows of its basis).
+    pub fn placed(
+        system: &'a RotorSystem,
+        damping: &'a DampingModel,
+        speed: f64,
+        at: Vec<(Placement, usize, f64)>,
     ) -> Result<Self, AnalysisError> {
         let mut first = Self {
             system,
@@ -156,6 +172,11 @@ impl<'a> FirstForward<'a> {
             .into_iter()
             .min_by(|a, b| a.frequency().total_cmp(&b.frequency()));
         Ok(first)
+    }
+
+    /// `|s|` of the first forward pole without cross-coupling.
+    pub fn reference_modulus(&self) -> Option<f64> {
+        self.reference.as_ref().map(|p| p.s.norm())
     }
 
     /// Without cross-coupling.
@@ -190,7 +211,7 @@ impl<'a> FirstForward<'a> {
     fn candidates(&self, q: f64) -> Result<Vec<Pole>, AnalysisError> {
         let mut s = self.system.clone();
         if q != 0.0 {
-            for &(dof, w) in self.at {
+            for (at, node, w) in &self.at {
                 let k = Matrix2 {
                     xx: 0.0,
                     xy: w * q,
@@ -198,11 +219,11 @@ impl<'a> FirstForward<'a> {
                     yy: 0.0,
                 };
                 s.supports.push(PlacedSupport {
-                    at: Placement::Dof(dof),
+                    at: at.clone(),
                     support: GeneralSupport {
                         index: usize::MAX,
                         seal: false,
-                        node: s.dofs[dof].node,
+                        node: *node,
                         law: Law::Constant(Coefficients {
                             k,
                             ..Coefficients::default()
@@ -232,12 +253,26 @@ pub fn auto_range(
     count: usize,
     control: &Control,
 ) -> Result<Vec<f64>, AnalysisError> {
+    let first = FirstForward::new(system, damping, speed, at)?;
+    auto_range_of(&first, stiffness_scale(system), count, control)
+}
+
+/// The largest stiffness on the diagonal of `system`, N/m.
+pub fn stiffness_scale(system: &RotorSystem) -> f64 {
     let k = system.stiffness();
-    let scale = (0..k.nrows())
+    (0..k.nrows())
         .map(|i| k[(i, i)].abs())
         .fold(0.0, f64::max)
-        .max(1e-300);
-    let first = FirstForward::new(system, damping, speed, at)?;
+        .max(1e-300)
+}
+
+/// [`auto_range`] of `first`, growing from a millionth of `scale` up to it.
+pub fn auto_range_of(
+    first: &FirstForward,
+    scale: f64,
+    count: usize,
+    control: &Control,
+) -> Result<Vec<f64>, AnalysisError> {
     let mut q = 1e-6 * scale;
     let mut stop = scale;
     while q < scale {
@@ -264,8 +299,17 @@ pub fn level1(
     qs: &[f64],
     control: &Control,
 ) -> Result<Level1, AnalysisError> {
-    control.expect(qs.len() as u64 + 40);
     let first = FirstForward::new(system, damping, speed, at)?;
+    level1_of(&first, qs, control)
+}
+
+/// The Level I curve of `first` over `qs` (increasing, >= 0) and `q0`.
+pub fn level1_of(
+    first: &FirstForward,
+    qs: &[f64],
+    control: &Control,
+) -> Result<Level1, AnalysisError> {
+    control.expect(qs.len() as u64 + 40);
     let mut eval = |q: f64| -> Result<ForwardPole, AnalysisError> {
         control.check()?;
         let p = first.at(q);

@@ -10,6 +10,7 @@ pub mod critical_map;
 pub mod deflection;
 pub mod frequency;
 pub mod level1;
+pub mod level1_reduced;
 pub mod level2;
 pub mod peaks;
 pub mod placement;

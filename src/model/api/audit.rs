@@ -420,6 +420,10 @@ pub struct FrequencyResponseRequest {
     pub output: ResponseOutput,
     /// Excitation frequencies, rad/s (> 0): a grid or a list.
     pub frequencies: SpeedsInput,
+    /// Whether the response may be solved on a checked modal reduction (default true; see
+    /// `/v1/unbalance-response`). The answer's `reduction` says what was solved.
+    #[serde(default)]
+    pub modal_reduction: Option<bool>,
 }
 
 /// Answer of `POST /v1/frequency-response`: per unit force (m/N) at each frequency, the
@@ -442,6 +446,9 @@ pub struct FrequencyResponseResponse {
     pub forward: Vec<f64>,
     pub backward: Vec<f64>,
     pub model: String,
+    /// The modal reduction the response was solved on; null when the full model was.
+    #[serde(default)]
+    pub reduction: Option<super::ResponseReductionInfo>,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub warnings: Vec<String>,
 }

@@ -138,6 +138,12 @@ pub struct UnbalanceResponseRequest {
     /// requires.
     #[serde(default)]
     pub operating_range: Option<OperatingRange>,
+    /// Whether the response may be solved on a checked modal reduction (default true): the
+    /// lowest modes with their static corrections at the loads, supports and outputs, compared
+    /// with the full model at the lowest and highest speed and at the largest response. The
+    /// answer's `reduction` says what was solved.
+    #[serde(default)]
+    pub modal_reduction: Option<bool>,
 }
 
 /// Steady synchronous response of one node: an elliptical orbit (a circle on isotropic
@@ -171,10 +177,36 @@ pub struct NodeUnbalance {
 pub struct UnbalanceResponseResponse {
     pub speeds: Vec<f64>,
     pub nodes: Vec<NodeUnbalance>,
+    /// The modal reduction the response was solved on; null when the full model was.
+    #[serde(default)]
+    pub reduction: Option<ResponseReductionInfo>,
     /// How the damping model treats synchronous whirl.
     pub note: String,
     /// How the model was read where it needed saying: supports held at the ends of their
     /// tables of coefficients outside them.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub warnings: Vec<String>,
+}
+
+/// A harmonic response solved on a modal reduction, and how well it reproduces the full model.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct ResponseReductionInfo {
+    /// Undamped modes retained (those up to twice the highest frequency, widened until the
+    /// check passes).
+    pub modes: usize,
+    /// Size of the basis: those modes, the static corrections of the forces that couple them
+    /// and the static responses to unit loads at the loads, supports and outputs.
+    pub vectors: usize,
+    /// Natural frequency of the highest retained mode, rad/s.
+    pub band: f64,
+    /// Size of each reduced solve.
+    pub states: usize,
+    /// Size of the full model's.
+    pub full_states: usize,
+    /// Where the reduced response was compared with the full model's (rad/s): the lowest and
+    /// highest speed (frequency) and that of the largest response.
+    pub checked: Vec<f64>,
+    /// Largest difference found there, `|a - a_full| + |b - b_full|` over the outputs,
+    /// relative to the largest `|a_full| + |b_full|` (at most 1e-7).
+    pub max_relative_error: f64,
 }

@@ -406,6 +406,7 @@ impl FrequencyResponseRequest {
                 input: (input.expect("validated"), exc.expect("validated")),
                 output: output.expect("validated"),
                 frequencies,
+                reduce: self.modal_reduction.unwrap_or(true),
             },
             cost: Cost::new(size, 0, 0, extra, count * 10 + 16).with_work(work),
         }

@@ -223,6 +223,7 @@ impl UnbalanceResponseRequest {
                 unbalances,
                 nodes: out,
                 range,
+                reduce: self.modal_reduction.unwrap_or(true),
             },
             cost,
         }

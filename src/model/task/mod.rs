@@ -213,6 +213,8 @@ pub enum TaskKind {
         nodes: Vec<usize>,
         /// Operating range `(min, max)`, rad/s: the peaks' separation margins.
         range: Option<(f64, f64)>,
+        /// Whether a checked modal reduction may be used.
+        reduce: bool,
     },
     CriticalMap {
         rotor: BeamRotor,
@@ -245,6 +247,8 @@ pub enum TaskKind {
         input: (usize, Excitation),
         output: usize,
         frequencies: Vec<f64>,
+        /// Whether a checked modal reduction may be used.
+        reduce: bool,
     },
     Report(Box<ReportPlan>),
 }

@@ -190,6 +190,7 @@ impl ReportRequest {
                 unbalances: unbalances.clone(),
                 nodes: Some(nodes.clone()),
                 operating_range: Some(self.operating_range),
+                modal_reduction: None,
             }
             .parse(limits)
         };

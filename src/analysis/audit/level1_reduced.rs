@@ -1,0 +1,161 @@
+//! API 617 Level I on a checked modal reduction.
+//!
+//! Every point of the Level I curve, and every step of the root finder for `q0`, is an
+//! eigenproblem of the rotor with the cross-coupling added. On the full model each is a damping
+//! model rebuilt and a dense eigensolve of the full state. The cross-coupling acts at a few
+//! translations, so a basis that holds the static responses to unit loads there (with the
+//! lowest modes, their static corrections and those at the supports, as for the Campbell
+//! diagram: [`reduction::reduce`]) carries it exactly: in modal coordinates it is a support on
+//! the rows of the basis at those translations, a rank-two update of the reduced stiffness.
+//! Each `q` then costs a reduced eigensolve.
+//!
+//! The reduction keeps every pole within twice the first forward mode's modulus to 1e-6
+//! relative at the screen's speed; the result is checked against the full model at the
+//! largest `q` solved (`q0` when found, else the end of the curve), where the cross-coupling
+//! moves the pole furthest, and the full model is solved instead if the first forward mode
+//! differs there by more than [`CHECK`] relative.
+//!
+//! [`reduction::reduce`]: crate::analysis::reduction::reduce
+
+use super::level1::{self, FirstForward, Level1, Placing, auto_range_of, level1_of};
+use crate::analysis::AnalysisError;
+use crate::analysis::control::Control;
+use crate::analysis::reduction::{self, Criterion, TOLERANCE};
+use crate::damping::DampedModel;
+use crate::model::damping::DampingModel;
+use crate::system::{Placement, RotorSystem};
+
+/// Largest relative difference of the first forward pole, reduced against full, accepted at
+/// the check.
+pub const CHECK: f64 = 1e-5;
+
+/// How a Level I screen was reduced.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Level1Reduction {
+    pub modes: usize,
+    pub vectors: usize,
+    /// State size of each reduced eigenproblem.
+    pub states: usize,
+    pub full_states: usize,
+    /// The cross-coupling at which the first forward pole was compared with the full model's.
+    pub checked_q: f64,
+    /// `|s_reduced - s_full| / |s_full|` there.
+    pub max_relative_error: f64,
+}
+
+/// A Level I screen: the grid (given, or [`level1::auto_range`]'s of `count` points), its
+/// result, the first forward pole at `qa` (if asked), and the reduction it ran on.
+pub struct Screened {
+    pub qs: Vec<f64>,
+    pub result: Level1,
+    pub qa: Option<(f64, level1::ForwardPole)>,
+    pub reduction: Option<Level1Reduction>,
+}
+
+/// Level I of `system` on a checked reduction, or on the full model where none passes.
+#[allow(clippy::too_many_arguments)]
+pub fn level1_reduced(
+    system: &RotorSystem,
+    damping: &DampingModel,
+    speed: f64,
+    at: &Placing,
+    qs: &[f64],
+    count: usize,
+    qa: Option<f64>,
+    control: &Control,
+) -> Result<Screened, AnalysisError> {
+    let full = DampedModel::build(system, damping)?;
+    let dofs: Vec<usize> = at.iter().map(|&(d, _)| d).collect();
+    let scale = level1::stiffness_scale(system);
+    let run = |first: &FirstForward| -> Result<(Vec<f64>, Level1, _), AnalysisError> {
+        let qs = if qs.is_empty() {
+            auto_range_of(first, scale, count, control)?
+        } else {
+            qs.to_vec()
+        };
+        let result = level1_of(first, &qs, control)?;
+        let qa = match qa {
+            Some(q) => Some((q, first.at(q)?)),
+            None => None,
+        };
+        Ok((qs, result, qa))
+    };
+    // The band: from the second mode at rest (the first forward mode is rarely above it),
+    // widened to twice the first forward mode's modulus if it is not.
+    let mut bound = full
+        .basis
+        .omega
+        .get(1)
+        .copied()
+        .unwrap_or(full.basis.omega[0])
+        .max(speed.abs());
+    for _ in 0..4 {
+        control.check()?;
+        let Some(red) = reduction::reduce(
+            system,
+            damping,
+            &full,
+            speed,
+            bound,
+            &dofs,
+            Criterion::Relative(TOLERANCE),
+        )?
+        else {
+            break;
+        };
+        let placed: Vec<(Placement, usize, f64)> = at
+            .iter()
+            .map(|&(d, w)| {
+                let row = (0..red.basis.len())
+                    .map(|k| red.basis.phi[(d, k)])
+                    .collect();
+                (Placement::Shape(row), system.dofs[d].node, w)
+            })
+            .collect();
+        let first = FirstForward::placed(&red.system, damping, speed, placed)?;
+        let modulus = first.reference_modulus();
+        if let Some(m) = modulus
+            && 1.5 * m > bound
+        {
+            bound = 2.0 * m;
+            continue;
+        }
+        let (qs, result, qa) = run(&first)?;
+        // The check: the largest cross-coupling solved.
+        let q = result.q0.unwrap_or(qs.iter().copied().fold(0.0, f64::max));
+        let whole = FirstForward::new(system, damping, speed, at)?;
+        let (exact, approx) = (whole.at(q)?, first.at(q)?);
+        let error = match (exact, approx) {
+            (Some(e), Some(a)) => {
+                let d = ((e.0 - a.0).powi(2) + (e.1 - a.1).powi(2)).sqrt();
+                d / (e.0 * e.0 + e.1 * e.1).sqrt().max(f64::MIN_POSITIVE)
+            }
+            (None, None) => 0.0,
+            _ => f64::INFINITY,
+        };
+        if error > CHECK {
+            break;
+        }
+        return Ok(Screened {
+            qs,
+            result,
+            qa,
+            reduction: Some(Level1Reduction {
+                modes: red.info.modes,
+                vectors: red.info.vectors,
+                states: red.info.states,
+                full_states: red.info.full_states,
+                checked_q: q,
+                max_relative_error: error,
+            }),
+        });
+    }
+    let first = FirstForward::new(system, damping, speed, at)?;
+    let (qs, result, qa) = run(&first)?;
+    Ok(Screened {
+        qs,
+        result,
+        qa,
+        reduction: None,
+    })
+}

@@ -1,0 +1,491 @@
+//! Harmonic responses (unbalance, frequency response) on a checked modal reduction.
+//!
+//! A steady response up to a frequency `w_b` is carried by the modes below it; the modes above
+//! respond quasi-statically. Projected on the lowest undamped modes with `w_k <= 2 w_b`, their
+//! static corrections (gyroscopic, damping and loss couplings, as for the Campbell diagram) and
+//! the static responses to unit loads where the forces act, where the supports and
+//! nonrotating dampers act, and at the outputs (residual flexibility: the forcing and the
+//! observation are then exact at zero frequency, and the output error is second order in the
+//! basis error), each frequency costs one solve of the reduced size instead of the full one.
+//!
+//! The reduction is checked, not assumed: at the band's edges (the lowest and highest loaded
+//! frequency) the reduced response at every output is compared with the full model's, and
+//! after the sweep again at its largest response (where a pole's error is amplified most);
+//! the band widens by half until the largest difference is within [`TOLERANCE`] of the largest
+//! response compared, or the full model is solved when no basis at least halves the state.
+//! What was solved is reported ([`ResponseReduction`]).
+
+use super::AnalysisError;
+use super::audit::frequency::{Harmonic, Orbit, Steady};
+use super::control::Control;
+use super::reduction::with_supports;
+use super::unbalance::SteadyUnbalance;
+use crate::damping::DampedModel;
+use crate::fem::modal::ModalBasis;
+use crate::linalg::{RMat, c64};
+use crate::model::damping::DampingModel;
+use crate::system::RotorSystem;
+use rayon::prelude::*;
+
+/// Largest difference between the reduced and the full response allowed at a checked
+/// frequency, relative to the largest response there: ten times below the 1e-6 the reduced
+/// response is held to everywhere between the checked points (tests/response.rs).
+pub const TOLERANCE: f64 = 1e-7;
+
+/// How a harmonic response was reduced.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ResponseReduction {
+    /// Undamped modes retained.
+    pub modes: usize,
+    /// Size of the basis: the modes and their independent static corrections.
+    pub vectors: usize,
+    /// State size of each reduced solve (the second-order size for the hysteretic model).
+    pub states: usize,
+    /// State size of the full model.
+    pub full_states: usize,
+    /// Natural frequency of the highest retained mode, rad/s.
+    pub band: f64,
+    /// The frequencies (spin speeds for an unbalance response) at which the reduced response
+    /// was compared with the full one.
+    pub checked: Vec<f64>,
+    /// Largest difference found there, relative to the largest response compared.
+    pub max_relative_error: f64,
+}
+
+/// A rotor's harmonic responses: on a checked reduction, or on the full model.
+pub struct Responses<'a> {
+    system: &'a RotorSystem,
+    full: &'a DampedModel,
+    reduced: Option<Reduced>,
+}
+
+struct Reduced {
+    system: RotorSystem,
+    model: DampedModel,
+    /// The basis, `q = phi eta`.
+    phi: RMat,
+    info: ResponseReduction,
+}
+
+/// Orbits at the check points, flattened, from a model.
+pub type Probe<'p> = dyn Fn(&Responses) -> Result<Vec<Orbit>, AnalysisError> + Sync + 'p;
+
+impl<'a> Responses<'a> {
+    /// The full model.
+    pub fn full(system: &'a RotorSystem, full: &'a DampedModel) -> Self {
+        Responses {
+            system,
+            full,
+            reduced: None,
+        }
+    }
+
+    /// What was reduced; `None` on the full model.
+    pub fn reduction(&self) -> Option<&ResponseReduction> {
+        self.reduced.as_ref().map(|r| &r.info)
+    }
+
+    /// The reduction for responses below `bound` (rad/s) with forces and outputs on `dofs`,
+    /// checked by `probe` at `checked` (the orbits at those points): the first basis whose
+    /// probe is within [`TOLERANCE`] of the full model's; the full model if none at least
+    /// halves the state (or `reduce` is false).
+    pub fn checked(
+        system: &'a RotorSystem,
+        damping: &DampingModel,
+        full: &'a DampedModel,
+        bound: f64,
+        dofs: &[usize],
+        checked: &[f64],
+        probe: &Probe,
+    ) -> Result<Self, AnalysisError> {
+        Self::widened(system, damping, full, bound, dofs, checked, probe, 0)
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn widened(
+        system: &'a RotorSystem,
+        damping: &DampingModel,
+        full: &'a DampedModel,
+        bound: f64,
+        dofs: &[usize],
+        checked: &[f64],
+        probe: &Probe,
+        at_least: usize,
+    ) -> Result<Self, AnalysisError> {
+        let n = system.n();
+        let whole = Self::full(system, full);
+        if !(bound.is_finite() && bound > 0.0) {
+            return Ok(whole);
+        }
+        let basis = &full.basis;
+        let mut m = basis
+            .omega
+            .iter()
+            .filter(|&&w| w <= 2.0 * bound)
+            .count()
+            .max(4)
+            .max(at_least);
+        let loads = with_supports(system, dofs);
+        let candidate = |m: usize| -> Option<(ModalBasis, RotorSystem, DampedModel)> {
+            let sub = basis.augmented_with(system, m, &loads).ok()?;
+            let reduced = sub.reduce(system);
+            let model = DampedModel::build(&reduced, damping).ok()?;
+            (2 * model.states() <= full.states()).then_some((sub, reduced, model))
+        };
+        if m >= n {
+            return Ok(whole);
+        }
+        let (exact, first) = rayon::join(|| probe(&whole), || candidate(m));
+        let exact = exact?;
+        let scale = exact
+            .iter()
+            .map(|o| o.a.norm() + o.b.norm())
+            .fold(0.0, f64::max);
+        let mut current = first;
+        while let Some((sub, reduced, model)) = current {
+            let states = model.states();
+            let mut r = Responses {
+                system,
+                full,
+                reduced: Some(Reduced {
+                    system: reduced,
+                    model,
+                    phi: sub.phi.clone(),
+                    info: ResponseReduction {
+                        modes: m,
+                        vectors: sub.len(),
+                        states,
+                        full_states: full.states(),
+                        band: basis.omega[m - 1],
+                        checked: checked.to_vec(),
+                        max_relative_error: 0.0,
+                    },
+                }),
+            };
+            let approx = probe(&r)?;
+            let error = difference(&exact, &approx, scale);
+            if error <= TOLERANCE {
+                if let Some(red) = r.reduced.as_mut() {
+                    red.info.max_relative_error = error;
+                }
+                return Ok(r);
+            }
+            m = (3 * m).div_ceil(2);
+            current = if m < n { candidate(m) } else { None };
+        }
+        Ok(whole)
+    }
+
+    /// This reduction checked again at `more` points (`probe` covering the old and new
+    /// ones), widened from its band if that fails.
+    pub fn rechecked(
+        self,
+        damping: &DampingModel,
+        bound: f64,
+        dofs: &[usize],
+        more: &[f64],
+        probe: &Probe,
+    ) -> Result<Self, AnalysisError> {
+        let Some(r) = &self.reduced else {
+            return Ok(self);
+        };
+        let mut checked = r.info.checked.clone();
+        checked.extend(more);
+        let whole = Self::full(self.system, self.full);
+        let (exact, approx) = rayon::join(|| probe(&whole), || probe(&self));
+        let (exact, approx) = (exact?, approx?);
+        let scale = exact
+            .iter()
+            .map(|o| o.a.norm() + o.b.norm())
+            .fold(0.0, f64::max);
+        let error = difference(&exact, &approx, scale);
+        if error <= TOLERANCE {
+            let mut s = self;
+            if let Some(red) = s.reduced.as_mut() {
+                red.info.checked = checked;
+                red.info.max_relative_error = red.info.max_relative_error.max(error);
+            }
+            return Ok(s);
+        }
+        let at_least = (3 * r.info.modes).div_ceil(2);
+        Self::widened(
+            self.system,
+            damping,
+            self.full,
+            bound,
+            dofs,
+            &checked,
+            probe,
+            at_least,
+        )
+    }
+
+    /// The model's state at `speed`, shared by every frequency solved there.
+    pub fn at(&self, speed: f64) -> At<'_> {
+        match &self.reduced {
+            Some(r) => At {
+                steady: Steady::at(&r.system, &r.model, speed),
+                phi: Some(&r.phi),
+            },
+            None => At {
+                steady: Steady::at(self.system, self.full, speed),
+                phi: None,
+            },
+        }
+    }
+
+    /// The steady orbit of every degree of freedom in `out` under `force` at `omega`, the
+    /// rotor spun at `speed`.
+    pub fn orbits(
+        &self,
+        speed: f64,
+        omega: f64,
+        force: &Harmonic,
+        out: &[usize],
+    ) -> Result<Vec<Orbit>, AnalysisError> {
+        self.at(speed).orbits(omega, force, out)
+    }
+}
+
+/// A model at one spin speed.
+pub struct At<'r> {
+    steady: Steady,
+    phi: Option<&'r RMat>,
+}
+
+impl At<'_> {
+    /// The steady orbit of every degree of freedom in `out` (physical coordinates) under
+    /// `force` (physical coordinates) at `omega`.
+    pub fn orbits(
+        &self,
+        omega: f64,
+        force: &Harmonic,
+        out: &[usize],
+    ) -> Result<Vec<Orbit>, AnalysisError> {
+        let Some(phi) = self.phi else {
+            return self.steady.orbits(omega, force, out);
+        };
+        let k = phi.ncols();
+        // `Phi^T f`, over the loaded coordinates only.
+        let project = |f: &[c64]| -> Vec<c64> {
+            let mut out = vec![c64::new(0.0, 0.0); k];
+            for (i, fi) in f.iter().enumerate().filter(|(_, f)| f.norm() != 0.0) {
+                for (j, o) in out.iter_mut().enumerate() {
+                    *o += fi * phi[(i, j)];
+                }
+            }
+            out
+        };
+        let reduced = Harmonic {
+            forward: project(&force.forward),
+            backward: project(&force.backward),
+        };
+        let (a, b) = self.steady.amplitudes(omega, &reduced)?;
+        let row = |d: usize, v: &[c64]| -> c64 { (0..k).map(|j| v[j] * phi[(d, j)]).sum() };
+        Ok(out
+            .iter()
+            .map(|&d| Orbit {
+                a: row(d, &a),
+                b: row(d, &b),
+            })
+            .collect())
+    }
+}
+
+/// Largest `|a - a'| + |b - b'|` over the orbits, relative to `scale`.
+fn difference(exact: &[Orbit], approx: &[Orbit], scale: f64) -> f64 {
+    if exact.len() != approx.len() {
+        return f64::INFINITY;
+    }
+    let worst = exact
+        .iter()
+        .zip(approx)
+        .map(|(e, a)| (e.a - a.a).norm() + (e.b - a.b).norm())
+        .fold(0.0, f64::max);
+    if worst == 0.0 {
+        0.0
+    } else {
+        worst / scale.max(f64::MIN_POSITIVE)
+    }
+}
+
+/// The force of `unbalances` at spin speed `w` on a rotor of `n` coordinates.
+pub fn unbalance_force(unbalances: &[SteadyUnbalance], n: usize, w: f64) -> Harmonic {
+    let zero = c64::new(0.0, 0.0);
+    let mut force = Harmonic {
+        forward: vec![zero; n],
+        backward: vec![zero; n],
+    };
+    for u in unbalances {
+        force.forward[u.dof] += c64::from_polar(u.amount * w * w, u.phase);
+    }
+    force
+}
+
+/// The synchronous response to `unbalances` at `out` over `speeds`, on a checked reduction
+/// (if `reduce`): at the lowest and highest nonzero speed, then at the speed of the largest
+/// response. Returns the orbits per speed and the model solved (for peak refinement).
+#[allow(clippy::too_many_arguments)]
+pub fn unbalance_sweep<'a>(
+    system: &'a RotorSystem,
+    damping: &DampingModel,
+    full: &'a DampedModel,
+    speeds: &[f64],
+    unbalances: &[SteadyUnbalance],
+    out: &[usize],
+    reduce: bool,
+    control: &Control,
+) -> Result<(Vec<Vec<Orbit>>, Responses<'a>), AnalysisError> {
+    let n = system.n();
+    control.expect(speeds.len() as u64);
+    let at = |r: &Responses, w: f64| r.orbits(w, w, &unbalance_force(unbalances, n, w), out);
+    let probe_at = |points: Vec<f64>| {
+        move |r: &Responses| -> Result<Vec<Orbit>, AnalysisError> {
+            let per: Vec<Vec<Orbit>> = points
+                .par_iter()
+                .map(|&w| at(r, w))
+                .collect::<Result<_, _>>()?;
+            Ok(per.concat())
+        }
+    };
+    let mut dofs: Vec<usize> = unbalances.iter().map(|u| u.dof).collect();
+    dofs.extend(out);
+    let bound = speeds.iter().fold(0.0, |a: f64, b| a.max(b.abs()));
+    let nonzero: Vec<f64> = speeds.iter().copied().filter(|w| *w != 0.0).collect();
+    let edges = edges(&nonzero);
+    let mut model = if reduce && !edges.is_empty() {
+        Responses::checked(
+            system,
+            damping,
+            full,
+            bound,
+            &dofs,
+            &edges,
+            &probe_at(edges.clone()),
+        )?
+    } else {
+        Responses::full(system, full)
+    };
+    let sweep = |model: &Responses| -> Result<Vec<Vec<Orbit>>, AnalysisError> {
+        speeds
+            .par_iter()
+            .map(|&w| {
+                control.check()?;
+                let o = at(model, w)?;
+                control.advance(1);
+                Ok(o)
+            })
+            .collect()
+    };
+    let mut response = sweep(&model)?;
+    if let Some(peak) = largest(speeds, &response)
+        && model.reduced.is_some()
+        && !edges.contains(&peak)
+    {
+        let mut points = edges.clone();
+        points.push(peak);
+        let before = model.reduction().map(|r| r.modes);
+        model = model.rechecked(damping, bound, &dofs, &[peak], &probe_at(points))?;
+        if model.reduction().map(|r| r.modes) != before {
+            response = sweep(&model)?;
+        }
+    }
+    Ok((response, model))
+}
+
+/// The first and last of `points` (once if they are one).
+fn edges(points: &[f64]) -> Vec<f64> {
+    let mut e: Vec<f64> = points
+        .first()
+        .into_iter()
+        .chain(points.last())
+        .copied()
+        .collect();
+    e.dedup();
+    e
+}
+
+/// The point of the largest orbit (semi-major axis) at any output.
+fn largest(points: &[f64], response: &[Vec<Orbit>]) -> Option<f64> {
+    points
+        .iter()
+        .zip(response)
+        .map(|(&w, o)| (w, o.iter().map(|o| o.major()).fold(0.0, f64::max)))
+        .filter(|(_, a)| *a > 0.0)
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(w, _)| w)
+}
+
+/// The orbit at `output` per unit `force` at each of `frequencies`, the rotor spun at
+/// `speed`, on a checked reduction (if `reduce`): at the lowest and highest frequency, then
+/// at the largest response.
+#[allow(clippy::too_many_arguments)]
+pub fn frequency_sweep<'a>(
+    system: &'a RotorSystem,
+    damping: &DampingModel,
+    full: &'a DampedModel,
+    speed: f64,
+    force: &Harmonic,
+    output: usize,
+    frequencies: &[f64],
+    reduce: bool,
+    control: &Control,
+) -> Result<(Vec<Orbit>, Responses<'a>), AnalysisError> {
+    control.expect(frequencies.len() as u64);
+    let probe_at = |points: Vec<f64>| {
+        move |r: &Responses| -> Result<Vec<Orbit>, AnalysisError> {
+            let at = r.at(speed);
+            let per: Vec<Vec<Orbit>> = points
+                .par_iter()
+                .map(|&w| at.orbits(w, force, &[output]))
+                .collect::<Result<_, _>>()?;
+            Ok(per.concat())
+        }
+    };
+    let mut dofs: Vec<usize> = (0..force.forward.len())
+        .filter(|&i| force.forward[i].norm() != 0.0 || force.backward[i].norm() != 0.0)
+        .collect();
+    dofs.push(output);
+    let bound = frequencies.iter().fold(0.0, |a: f64, b| a.max(b.abs()));
+    let edges = edges(frequencies);
+    let mut model = if reduce && !edges.is_empty() {
+        Responses::checked(
+            system,
+            damping,
+            full,
+            bound,
+            &dofs,
+            &edges,
+            &probe_at(edges.clone()),
+        )?
+    } else {
+        Responses::full(system, full)
+    };
+    let sweep = |model: &Responses| -> Result<Vec<Orbit>, AnalysisError> {
+        let at = model.at(speed);
+        frequencies
+            .par_iter()
+            .map(|&w| {
+                control.check()?;
+                let o = at.orbits(w, force, &[output])?;
+                control.advance(1);
+                Ok(o[0])
+            })
+            .collect()
+    };
+    let mut response = sweep(&model)?;
+    let per: Vec<Vec<Orbit>> = response.iter().map(|o| vec![*o]).collect();
+    if let Some(peak) = largest(frequencies, &per)
+        && model.reduced.is_some()
+        && !edges.contains(&peak)
+    {
+        let mut points = edges.clone();
+        points.push(peak);
+        let before = model.reduction().map(|r| r.modes);
+        model = model.rechecked(damping, bound, &dofs, &[peak], &probe_at(points))?;
+        if model.reduction().map(|r| r.modes) != before {
+            response = sweep(&model)?;
+        }
+    }
+    Ok((response, model))
+}
