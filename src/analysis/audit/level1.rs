@@ -203,6 +203,7 @@ impl<'a> FirstForward<'a> {
                         index: usize::MAX,
                         seal: false,
                         node: s.dofs[dof].node,
+                        link: None,
                         law: Law::Constant(Coefficients {
                             k,
                             ..Coefficients::default()
