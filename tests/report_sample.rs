@@ -38,6 +38,7 @@ pub fn rotor() -> RotorInput {
             transverse_inertia: 0.0977,
         }],
         seals: vec![],
+        point_masses: vec![],
         supports: vec![
             SupportInput {
                 node: 1,

@@ -29,11 +29,27 @@ pub fn section(e: &ShaftElement) -> Section {
     }
 }
 
-/// The shaft and disks of a beam rotor alone: no supports, no reduction (2 complex degrees of
-/// freedom per node). What the audit analyses replace the supports on.
+/// The shaft and disks of a beam rotor alone: no point masses, no nodes off the shaft, no
+/// supports, no reduction (2 complex degrees of freedom per node). What the audit analyses
+/// replace the supports on (as ROSS's `run_ucs` and `run_static` do, which drop point masses).
 pub fn beam_shaft(rotor: &BeamRotor) -> RotorSystem {
-    let nodes = rotor.nodes();
-    let n = 2 * nodes;
+    structure(rotor, 2 * rotor.shaft_nodes())
+}
+
+/// The degree of freedom of a node's translation in an assembled beam rotor: `2 node` on the
+/// shaft, then one per node off it.
+pub fn translation_dof(rotor: &BeamRotor, node: usize) -> usize {
+    let shaft = rotor.shaft_nodes();
+    if node < shaft {
+        2 * node
+    } else {
+        2 * shaft + (node - shaft)
+    }
+}
+
+/// The shaft and disks on `n` degrees of freedom (`n` past the shaft's: nodes off it).
+fn structure(rotor: &BeamRotor, n: usize) -> RotorSystem {
+    let shaft = rotor.shaft_nodes();
     let z = || RMat::zeros(n, n);
     let mut s = RotorSystem {
         mass: z(),
@@ -45,12 +61,18 @@ pub fn beam_shaft(rotor: &BeamRotor) -> RotorSystem {
         hysteretic_rotating: z(),
         hysteretic_nonrotating: z(),
         dofs: (0..n)
-            .map(|i| Dof {
-                node: i / 2,
-                kind: if i % 2 == 0 {
-                    DofKind::Translation
-                } else {
-                    DofKind::Rotation
+            .map(|i| match i {
+                i if i >= 2 * shaft => Dof {
+                    node: shaft + (i - 2 * shaft),
+                    kind: DofKind::Translation,
+                },
+                i if i % 2 == 0 => Dof {
+                    node: i / 2,
+                    kind: DofKind::Translation,
+                },
+                i => Dof {
+                    node: i / 2,
+                    kind: DofKind::Rotation,
                 },
             })
             .collect(),
@@ -73,6 +95,16 @@ pub fn beam_shaft(rotor: &BeamRotor) -> RotorSystem {
     s
 }
 
+/// A real coefficient `a` between translations `r` and `link` (ground if `None`).
+fn spring(target: &mut RMat, r: usize, link: Option<usize>, a: f64) {
+    target[(r, r)] += a;
+    if let Some(l) = link {
+        target[(l, l)] += a;
+        target[(r, l)] -= a;
+        target[(l, r)] -= a;
+    }
+}
+
 impl RotorSystem {
     /// Assembles (and reduces, if asked) a validated rotor.
     pub fn assemble(rotor: &Rotor) -> Result<Self, LinalgError> {
@@ -86,12 +118,24 @@ impl RotorSystem {
 
 /// Assembles (and reduces, if asked) a beam rotor.
 pub fn beam(rotor: &BeamRotor) -> Result<RotorSystem, LinalgError> {
-    let mut s = beam_shaft(rotor);
+    let mut s = structure(rotor, rotor.assembled_dofs());
+    let at = |node: usize| translation_dof(rotor, node);
+    for p in rotor.point_masses() {
+        let r = at(p.node);
+        s.mass[(r, r)] += p.mass;
+        s.stiffness_nonrotating[(r, r)] += p.stiffness;
+        s.damping_nonrotating[(r, r)] += p.damping;
+    }
     for sup in rotor.supports() {
-        let r = 2 * sup.node;
-        s.stiffness_nonrotating[(r, r)] += sup.stiffness;
-        s.damping_nonrotating[(r, r)] += sup.damping;
-        s.hysteretic_nonrotating[(r, r)] += sup.loss_factor * sup.stiffness;
+        let (r, l) = (at(sup.node), sup.link.map(at));
+        spring(&mut s.stiffness_nonrotating, r, l, sup.stiffness);
+        spring(&mut s.damping_nonrotating, r, l, sup.damping);
+        spring(
+            &mut s.hysteretic_nonrotating,
+            r,
+            l,
+            sup.loss_factor * sup.stiffness,
+        );
     }
     let mut s = match rotor.guyan() {
         None => s,
@@ -108,12 +152,18 @@ pub fn beam(rotor: &BeamRotor) -> Result<RotorSystem, LinalgError> {
     s.supports = rotor
         .general_supports()
         .iter()
-        .map(|g| PlacedSupport {
-            at: Placement::Dof(
-                s.translation(g.node)
-                    .expect("validated: every node has a translation"),
-            ),
-            support: g.clone(),
+        .map(|g| {
+            let t = |node| {
+                s.translation(node)
+                    .expect("validated: every node has a translation")
+            };
+            PlacedSupport {
+                at: match g.link {
+                    None => Placement::Dof(t(g.node)),
+                    Some(l) => Placement::Between(t(g.node), t(l)),
+                },
+                support: g.clone(),
+            }
         })
         .collect();
     Ok(s)
@@ -142,7 +192,10 @@ pub fn matrices(m: &MatrixRotor) -> RotorSystem {
             .general_supports
             .iter()
             .map(|g| PlacedSupport {
-                at: Placement::Dof(g.node),
+                at: match g.link {
+                    None => Placement::Dof(g.node),
+                    Some(l) => Placement::Between(g.node, l),
+                },
                 support: g.clone(),
             })
             .collect(),

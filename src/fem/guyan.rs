@@ -42,15 +42,17 @@ pub fn reduce(system: &RotorSystem, keep: &[bool]) -> Result<RotorSystem, Linalg
             .iter()
             .filter_map(|p| {
                 // Supports are placed after the Guyan reduction (see `fem::assembly`).
-                let crate::system::Placement::Dof(d) = p.at else {
-                    return None;
+                use crate::system::Placement;
+                let new = |d: usize| kept.iter().position(|&i| i == d);
+                let at = match p.at {
+                    Placement::Dof(d) => Placement::Dof(new(d)?),
+                    Placement::Between(a, b) => Placement::Between(new(a)?, new(b)?),
+                    Placement::Shape(_) => return None,
                 };
-                kept.iter()
-                    .position(|&i| i == d)
-                    .map(|dof| crate::system::PlacedSupport {
-                        at: crate::system::Placement::Dof(dof),
-                        support: p.support.clone(),
-                    })
+                Some(crate::system::PlacedSupport {
+                    at,
+                    support: p.support.clone(),
+                })
             })
             .collect(),
     })

@@ -2,6 +2,8 @@
 
 use super::api::{BeamInput, GuyanKeep, JeffcottInput, MatricesInput, RotorInput};
 use super::error::{Invalid, finite, loss_factor, non_negative, positive};
+pub use super::point_masses::PointMass;
+use super::point_masses::{nodes_off_shaft, parse_point_masses};
 use super::supports::GeneralSupport;
 pub use super::supports::{Support, parse_supports, support_path};
 use crate::linalg::{self, RMat};
@@ -56,7 +58,7 @@ impl Rotor {
     pub fn assembled_dofs(&self) -> usize {
         match self {
             Rotor::Jeffcott(_) => 1,
-            Rotor::Beam(b) => 2 * b.nodes(),
+            Rotor::Beam(b) => b.assembled_dofs(),
             Rotor::Matrices(m) => m.mass.nrows(),
         }
     }
@@ -94,7 +96,7 @@ impl Rotor {
                 if b.guyan.is_some() {
                     b.nodes()
                 } else {
-                    2 * b.nodes()
+                    b.assembled_dofs()
                 }
             }
             Rotor::Matrices(m) => m.mass.nrows(),
@@ -126,11 +128,15 @@ pub struct Disk {
     pub transverse_inertia: f64,
 }
 
-/// A valid finite-element rotor: element `e` joins nodes `e` and `e + 1`.
+/// A valid finite-element rotor: element `e` joins nodes `e` and `e + 1`; nodes from
+/// `shaft_nodes()` on are off the shaft (translations only, see `point_masses`).
 #[derive(Debug, Clone, PartialEq)]
 pub struct BeamRotor {
     elements: Vec<ShaftElement>,
     disks: Vec<Disk>,
+    point_masses: Vec<PointMass>,
+    /// Nodes off the shaft.
+    off_shaft: usize,
     supports: Vec<Support>,
     general_supports: Vec<GeneralSupport>,
     guyan: Option<GuyanKeep>,
@@ -158,8 +164,28 @@ impl BeamRotor {
     pub fn guyan(&self) -> Option<GuyanKeep> {
         self.guyan
     }
+    pub fn point_masses(&self) -> &[PointMass] {
+        &self.point_masses
+    }
+    /// Every node: the shaft's and those off it.
     pub fn nodes(&self) -> usize {
+        self.shaft_nodes() + self.off_shaft
+    }
+    /// The shaft's nodes, `0..shaft_nodes()`.
+    pub fn shaft_nodes(&self) -> usize {
         self.elements.len() + 1
+    }
+    /// Complex degrees of freedom as assembled: translation and rotation on the shaft,
+    /// translation off it.
+    pub fn assembled_dofs(&self) -> usize {
+        2 * self.shaft_nodes() + self.off_shaft
+    }
+    /// Whether it has nodes off the shaft or supports between two nodes: the shaft-only
+    /// views of the audit (critical speed map, statics) then leave the pedestals out.
+    pub fn has_pedestals(&self) -> bool {
+        self.off_shaft > 0
+            || self.supports.iter().any(|s| s.link.is_some())
+            || self.general_supports.iter().any(|s| s.link.is_some())
     }
 
     pub fn parse(b: &BeamInput, limits: &Limits) -> Result<Self, Invalid> {
@@ -290,24 +316,58 @@ impl BeamRotor {
         let nodes = element_count as usize + 1;
         // With no shaft, or a segment's count invalid, the nodes are unknown: check only the
         // sign then.
-        let nodes_known = !b.shaft.is_empty() && counts.iter().all(Option::is_some) && !too_many;
-        let mut node_ok = |bad: &mut Invalid, at: String, node: i64| -> Option<usize> {
-            if node >= 0 && (!nodes_known || (node as u64) < nodes as u64) {
+        let mut nodes_known =
+            !b.shaft.is_empty() && counts.iter().all(Option::is_some) && !too_many;
+        let off_shaft = if nodes_known {
+            nodes_off_shaft(&b.point_masses, nodes, &mut bad)
+        } else {
+            Some(0)
+        };
+        nodes_known &= off_shaft.is_some();
+        let off_shaft = off_shaft.unwrap_or(0);
+        if nodes_known && 2 * nodes as u64 + off_shaft as u64 > limits.max_dofs as u64 {
+            bad.push(
+                "rotor.point_masses",
+                format!(
+                    "{} nodes off the shaft give {} degrees of freedom, more than the limit of \
+                     {} (WHIRL_MAX_DOFS)",
+                    off_shaft,
+                    2 * nodes + off_shaft,
+                    limits.max_dofs
+                ),
+            );
+            nodes_known = false;
+        }
+        let node_check = |bad: &mut Invalid, at: String, node: i64, all: usize| {
+            if node >= 0 && (!nodes_known || (node as u64) < all as u64) {
                 Some(node as usize)
             } else {
                 let why = if node < 0 {
                     format!("must be >= 0 (got {node})")
-                } else {
+                } else if all == nodes {
                     format!("node {node} is not on the shaft (nodes 0 to {})", nodes - 1)
+                } else {
+                    format!(
+                        "node {node} does not exist (shaft nodes 0 to {}, nodes off the shaft \
+                         {} to {}: those of `point_masses`)",
+                        nodes - 1,
+                        nodes,
+                        all - 1
+                    )
                 };
                 bad.push(at, why);
                 None
             }
         };
+        let all_nodes = nodes + off_shaft;
+        let mut node_ok = |bad: &mut Invalid, at: String, node: i64| -> Option<usize> {
+            node_check(bad, at, node, all_nodes)
+        };
+        let point_masses = parse_point_masses(&b.point_masses, nodes, &mut bad, &mut node_ok);
         let mut disks = vec![];
         for (i, d) in b.disks.iter().enumerate() {
             let at = format!("rotor.disks[{i}]");
-            let node = node_ok(&mut bad, format!("{at}.node"), d.node);
+            let node = node_check(&mut bad, format!("{at}.node"), d.node, nodes);
             let mass = bad.check(&format!("{at}.mass"), non_negative(d.mass));
             let jp = bad.check(
                 &format!("{at}.polar_inertia"),
@@ -340,6 +400,8 @@ impl BeamRotor {
         bad.into_result(|| BeamRotor {
             elements,
             disks,
+            point_masses,
+            off_shaft,
             supports,
             general_supports,
             guyan: b.reduction.as_ref().map(|r| r.guyan),
@@ -444,9 +506,18 @@ impl MatrixRotor {
         let mut h_n = h_n;
         for s in &isotropic {
             if let (Some(k), Some(c), Some(h)) = (&mut stiffness, &mut c_n, &mut h_n) {
-                k[(s.node, s.node)] += s.stiffness;
-                c[(s.node, s.node)] += s.damping;
-                h[(s.node, s.node)] += s.loss_factor * s.stiffness;
+                for (m, a) in [
+                    (k, s.stiffness),
+                    (c, s.damping),
+                    (h, s.loss_factor * s.stiffness),
+                ] {
+                    m[(s.node, s.node)] += a;
+                    if let Some(l) = s.link {
+                        m[(l, l)] += a;
+                        m[(s.node, l)] -= a;
+                        m[(l, s.node)] -= a;
+                    }
+                }
             }
         }
         bad.into_result(|| MatrixRotor {

@@ -116,6 +116,8 @@ pub struct GeneralSupport {
     /// A seal (`rotor.seals`): left out of the critical speed map and the static analysis.
     pub seal: bool,
     pub node: usize,
+    /// The node it links `node` to (`None`: ground); it acts on `node - link`.
+    pub link: Option<usize>,
     pub law: Law,
     /// Its hysteretic stiffness is `loss_factor` times the symmetric part of `K`.
     pub loss_factor: f64,
@@ -246,7 +248,7 @@ pub fn is_general(s: &SupportInput) -> bool {
 pub fn parse_general(
     s: &SupportInput,
     (index, seal): (usize, bool),
-    node: usize,
+    (node, link): (usize, Option<usize>),
     at: &str,
     bad: &mut Invalid,
 ) -> Option<GeneralSupport> {
@@ -336,6 +338,7 @@ pub fn parse_general(
         index,
         seal,
         node,
+        link,
         law,
         loss_factor: eta?,
     })
@@ -372,6 +375,8 @@ pub struct Support {
     /// A seal (`rotor.seals`): left out of the critical speed map and the static analysis.
     pub seal: bool,
     pub node: usize,
+    /// The node it links `node` to (`None`: ground).
+    pub link: Option<usize>,
     pub stiffness: f64,
     pub damping: f64,
     pub loss_factor: f64,
@@ -399,10 +404,26 @@ pub fn parse_supports(
     for (i, s) in inputs.iter().enumerate() {
         let at = support_path(seal, i);
         let node = node_ok(bad, format!("{at}.node"), s.node);
+        let link = match s.n_link {
+            None => Some(None),
+            Some(l) => {
+                let l = node_ok(bad, format!("{at}.n_link"), l);
+                if l.is_some() && l == node {
+                    bad.push(
+                        format!("{at}.n_link"),
+                        format!("must differ from `node` ({})", s.node),
+                    );
+                    None
+                } else {
+                    l.map(Some)
+                }
+            }
+        };
         if is_general(s) {
-            if let (Some(g), Some(_)) = (
-                parse_general(s, (i, seal), node.unwrap_or(0), &at, bad),
+            if let (Some(g), Some(_), Some(_)) = (
+                parse_general(s, (i, seal), (node.unwrap_or(0), link.flatten()), &at, bad),
                 node,
+                link,
             ) {
                 general.push(g);
             }
@@ -424,11 +445,12 @@ pub fn parse_supports(
             &format!("{at}.loss_factor"),
             loss_factor(s.loss_factor.unwrap_or(0.0)),
         );
-        if let (Some(node), Some(k), Some(c), Some(eta)) = (node, k, c, eta) {
+        if let (Some(node), Some(link), Some(k), Some(c), Some(eta)) = (node, link, k, c, eta) {
             isotropic.push(Support {
                 index: i,
                 seal,
                 node,
+                link,
                 stiffness: k,
                 damping: c,
                 loss_factor: eta,
@@ -484,6 +506,7 @@ mod tests {
             index: 0,
             seal: false,
             node: 0,
+            link: None,
             law: Law::Table {
                 speeds: vec![100.0, 200.0, 400.0],
                 values: vec![at(1.0), at(3.0), at(4.0)],

@@ -77,6 +77,8 @@ pub struct PlacedSupport {
 pub enum Placement {
     /// `u = q[d]`: a degree of freedom of an assembled rotor.
     Dof(usize),
+    /// `u = q[a] - q[b]`: a support between two translations (a bearing on a pedestal).
+    Between(usize, usize),
     /// `u = w^T q`: in modal coordinates `q = Phi eta` the row of `Phi` at the translation
     /// (real, so `conj u` is `w^T conj q` in doubled coordinates).
     Shape(Vec<f64>),
@@ -87,6 +89,7 @@ impl Placement {
     pub fn weights(&self) -> Vec<(usize, f64)> {
         match self {
             Placement::Dof(d) => vec![(*d, 1.0)],
+            Placement::Between(a, b) => vec![(*a, 1.0), (*b, -1.0)],
             Placement::Shape(w) => w
                 .iter()
                 .enumerate()

@@ -197,6 +197,7 @@ mod tests {
                     index: 0,
                     seal: false,
                     node: 0,
+                    link: None,
                     law: Law::Constant(Coefficients {
                         k,
                         ..Coefficients::default()

@@ -118,13 +118,13 @@ pub fn rigid_first(rotor: &BeamRotor) -> Result<f64, AnalysisError> {
     for node in rotor
         .supports()
         .iter()
-        .filter(|s| !s.seal)
+        .filter(|s| !s.seal && s.node < rotor.shaft_nodes())
         .map(|s| s.node)
         .chain(
             rotor
                 .general_supports()
                 .iter()
-                .filter(|g| !g.seal)
+                .filter(|g| !g.seal && g.node < rotor.shaft_nodes())
                 .map(|g| g.node),
         )
     {
@@ -154,13 +154,13 @@ impl Springs {
         let dofs = rotor
             .supports()
             .iter()
-            .filter(|s| !s.seal)
+            .filter(|s| !s.seal && s.node < rotor.shaft_nodes())
             .map(|s| 2 * s.node)
             .chain(
                 rotor
                     .general_supports()
                     .iter()
-                    .filter(|g| !g.seal)
+                    .filter(|g| !g.seal && g.node < rotor.shaft_nodes())
                     .map(|g| 2 * g.node),
             )
             .collect();
@@ -206,7 +206,7 @@ fn curves(rotor: &BeamRotor) -> Vec<Curve<'_>> {
     let mut out: Vec<Curve> = rotor
         .supports()
         .iter()
-        .filter(|s| !s.seal)
+        .filter(|s| !s.seal && s.node < rotor.shaft_nodes())
         .map(|s| Curve {
             support: s.index,
             node: s.node,
@@ -214,7 +214,11 @@ fn curves(rotor: &BeamRotor) -> Vec<Curve<'_>> {
             law: Coefficient::Constant(s.stiffness),
         })
         .collect();
-    for g in rotor.general_supports().iter().filter(|g| !g.seal) {
+    for g in rotor
+        .general_supports()
+        .iter()
+        .filter(|g| !g.seal && g.node < rotor.shaft_nodes())
+    {
         let curve = |name, law| Curve {
             support: g.index,
             node: g.node,

@@ -224,6 +224,7 @@ impl<'a> FirstForward<'a> {
                         index: usize::MAX,
                         seal: false,
                         node: *node,
+                        link: None,
                         law: Law::Constant(Coefficients {
                             k,
                             ..Coefficients::default()

@@ -133,7 +133,7 @@ pub fn static_deflection(
     let supports: Vec<(usize, usize, Matrix2)> = rotor
         .supports()
         .iter()
-        .filter(|s| !s.seal)
+        .filter(|s| !s.seal && s.node < rotor.shaft_nodes())
         .map(|s| {
             let k = Matrix2 {
                 xx: s.stiffness,
@@ -146,7 +146,7 @@ pub fn static_deflection(
             rotor
                 .general_supports()
                 .iter()
-                .filter(|g| !g.seal)
+                .filter(|g| !g.seal && g.node < rotor.shaft_nodes())
                 .map(|g| (g.index, g.node, g.at(speed).k)),
         )
         .collect();
@@ -158,7 +158,7 @@ pub fn static_deflection(
     reactions.sort_by_key(|r| r.support);
 
     let z = positions(rotor);
-    let nodes = (0..rotor.nodes())
+    let nodes = (0..rotor.shaft_nodes())
         .map(|i| Deflection {
             node: i,
             position: z[i],
@@ -169,7 +169,7 @@ pub fn static_deflection(
         })
         .collect();
     // Upward node forces (reactions, disk weights) and element weights (down).
-    let mut force = vec![0.0; rotor.nodes()];
+    let mut force = vec![0.0; rotor.shaft_nodes()];
     for r in &reactions {
         force[r.node] += r.y;
     }

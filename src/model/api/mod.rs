@@ -98,6 +98,13 @@ pub struct BeamInput {
     /// from carrying load).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub seals: Vec<SupportInput>,
+    /// Point masses (bearing housings, pedestals), each with an optional isotropic stiffness
+    /// and damping to ground. A point mass may sit on a shaft node or on a node off the shaft:
+    /// those are numbered on from the shaft's last node (as ROSS numbers them), consecutively,
+    /// and have a translation only. A support whose `n_link` is such a node joins the shaft to
+    /// the pedestal.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub point_masses: Vec<PointMassInput>,
     /// Optional Guyan reduction: `{"guyan": "translations"}` keeps the translations and
     /// condenses the rotations.
     #[serde(default)]
@@ -165,6 +172,26 @@ pub struct DiskInput {
     pub transverse_inertia: f64,
 }
 
+/// A point mass on the translation of a node (ROSS's `PointMass`), optionally held to ground.
+#[derive(Debug, Clone, Default, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PointMassInput {
+    /// A shaft node, or a node off the shaft (numbered on from the shaft's last node).
+    #[schema(minimum = 0)]
+    pub node: i64,
+    /// Mass, kg (>= 0; > 0 on a node off the shaft).
+    #[schema(minimum = 0.0)]
+    pub mass: f64,
+    /// Isotropic stiffness to ground, N/m (>= 0, default 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schema(minimum = 0.0)]
+    pub stiffness: Option<f64>,
+    /// Isotropic viscous damping to ground, N s/m (>= 0, default 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schema(minimum = 0.0)]
+    pub damping: Option<f64>,
+}
+
 /// A support (bearing, seal, pedestal) on the translation of a node; nonrotating. Either the
 /// isotropic form `{node, stiffness, damping, loss_factor}` or the general form
 /// `{node, kxx, kxy, kyx, kyy, cxx, cxy, cyx, cyy, mxx, mxy, myx, myy, loss_factor, speeds}`:
@@ -172,11 +199,18 @@ pub struct DiskInput {
 /// (ROSS and API 684). Omitted coefficients are 0, except `kyy` and `cyy`, which default to
 /// `kxx` and `cxx`. With `speeds` (increasing, rad/s) every coefficient may be an array of as
 /// many values: linear in the spin speed between them, held at the end values outside.
+/// With `n_link` the support joins two nodes (a bearing from the shaft to a pedestal, as
+/// ROSS's `n_link`): its force acts on the relative motion `node - n_link`, equal and opposite
+/// on the two.
 #[derive(Debug, Clone, Default, Deserialize, Serialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SupportInput {
     #[schema(minimum = 0)]
     pub node: i64,
+    /// The node it links `node` to (default: ground). Usually a pedestal's node off the shaft.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schema(minimum = 0)]
+    pub n_link: Option<i64>,
     /// Isotropic form: stiffness, N/m.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stiffness: Option<f64>,

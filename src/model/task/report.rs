@@ -112,7 +112,7 @@ impl ReportRequest {
                 .disks()
                 .iter()
                 .max_by(|a, b| a.mass.total_cmp(&b.mass))
-                .map_or(rotor.nodes() / 2, |d| d.node);
+                .map_or(rotor.shaft_nodes() / 2, |d| d.node);
             let w_kg = rotor_mass(&rotor);
             let u = 6350.0 * w_kg / (hi * RPM) * 1e-6;
             vec![SteadyUnbalanceInput {
