@@ -106,7 +106,7 @@ const STORE_CHECK: std::time::Duration = std::time::Duration::from_secs(2);
 #[utoipa::path(post, path = "/v1/modal", tag = "analyses", request_body = ModalRequest,
     responses(
         (status = 200, description = "Poles (JSON; the table or the plot by Accept)",
-         content((ModalResponse = "application/json"), (String = "text/csv"))),
+         content((ModalResponse = "application/json"), (String = "text/csv"), (String = "image/svg+xml"), (String = "image/png"))),
         (status = 406, description = "No acceptable format", body = Problem, content_type = "application/problem+json"),
         AnalysisErrors))]
 pub async fn modal(
@@ -130,7 +130,7 @@ pub async fn modal(
 #[utoipa::path(post, path = "/v1/campbell", tag = "analyses", request_body = SweepRequest,
     responses(
         (status = 200, description = "Branches (JSON; the table or the plot by Accept)",
-         content((CampbellResponse = "application/json"), (String = "text/csv"), (String = "image/svg+xml"))),
+         content((CampbellResponse = "application/json"), (String = "text/csv"), (String = "image/svg+xml"), (String = "image/png"))),
         (status = 406, description = "No acceptable format", body = Problem, content_type = "application/problem+json"),
         AnalysisErrors))]
 pub async fn campbell(
@@ -152,7 +152,7 @@ pub async fn campbell(
 #[utoipa::path(post, path = "/v1/stability", tag = "analyses", request_body = SweepRequest,
     responses(
         (status = 200, description = "Threshold (JSON; the table or the plot by Accept)",
-         content((StabilityResponse = "application/json"), (String = "text/csv"), (String = "image/svg+xml"))),
+         content((StabilityResponse = "application/json"), (String = "text/csv"), (String = "image/svg+xml"), (String = "image/png"))),
         (status = 406, description = "No acceptable format", body = Problem, content_type = "application/problem+json"),
         AnalysisErrors))]
 pub async fn stability(
@@ -198,7 +198,7 @@ pub async fn damping_matrices(
 #[utoipa::path(post, path = "/v1/time-response", tag = "analyses", request_body = TimeResponseRequest,
     responses(
         (status = 200, description = "Displacements of the nodes (JSON; the table or the plot by Accept)",
-         content((TimeResponseResponse = "application/json"), (String = "text/csv"), (String = "image/svg+xml"))),
+         content((TimeResponseResponse = "application/json"), (String = "text/csv"), (String = "image/svg+xml"), (String = "image/png"))),
         (status = 406, description = "No acceptable format", body = Problem, content_type = "application/problem+json"),
         AnalysisErrors))]
 pub async fn time_response(
@@ -221,7 +221,7 @@ pub async fn time_response(
 #[utoipa::path(post, path = "/v1/unbalance-response", tag = "analyses", request_body = UnbalanceResponseRequest,
     responses(
         (status = 200, description = "Amplitude and phase per node and speed (JSON; the table or the plot by Accept)",
-         content((UnbalanceResponseResponse = "application/json"), (String = "text/csv"), (String = "image/svg+xml"))),
+         content((UnbalanceResponseResponse = "application/json"), (String = "text/csv"), (String = "image/svg+xml"), (String = "image/png"))),
         (status = 406, description = "No acceptable format", body = Problem, content_type = "application/problem+json"),
         AnalysisErrors))]
 pub async fn unbalance_response(
@@ -307,7 +307,7 @@ pub async fn get_job(
     params(("id" = String, Path, description = "Job id")),
     responses(
         (status = 200, description = "The analysis result",
-         content((Object = "application/json"), (String = "text/csv"), (String = "image/svg+xml"))),
+         content((Object = "application/json"), (String = "text/csv"), (String = "image/svg+xml"), (String = "image/png"))),
         (status = 404, description = "Unknown or forgotten job", body = Problem, content_type = "application/problem+json"),
         (status = 406, description = "Format not available", body = Problem, content_type = "application/problem+json"),
         (status = 409, description = "Not succeeded (yet)", body = Problem, content_type = "application/problem+json"),
