@@ -15,6 +15,8 @@ COPY benches benches
 COPY migrations migrations
 # The OpenAPI document's request examples are compiled in (src/service/openapi/examples.rs).
 COPY examples examples
+# The plots' font (PNG), compiled in: the runtime image has no fonts.
+COPY assets assets
 RUN cargo build --release --locked --bin whirl && strip target/release/whirl
 
 FROM debian:bookworm-slim

@@ -141,7 +141,7 @@ async fn a_job_is_submitted_polled_and_fetched() {
     assert!(
         String::from_utf8(csv)
             .unwrap()
-            .starts_with("speed,mode1_forward_frequency")
+            .starts_with("speed [rad/s],mode1_forward_frequency [rad/s]")
     );
     let (s, _, svg) = call(
         &app,
@@ -478,17 +478,17 @@ async fn plots_and_tables_by_accept() {
         (
             "example1-runup-nvd.time-response.json",
             "time-response",
-            "time,node1_x,node1_y",
+            "time [s],node1_x [m],node1_y [m]",
         ),
         (
             "compressor-equivalent.stability.json",
             "stability",
-            "speed,max_decay_rate",
+            "speed [rad/s],max_decay_rate [1/s]",
         ),
         (
             "example1-nvd.unbalance-response.json",
             "unbalance-response",
-            "speed,node1_amplitude",
+            "speed [rad/s],node1_amplitude [m]",
         ),
     ] {
         let (s, _, csv) = call(

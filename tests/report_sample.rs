@@ -473,6 +473,7 @@ pub fn report() -> ReportResponse {
         operating_range: OperatingRange {
             min: 180.0,
             max: 300.0,
+            unit: None,
         },
         critical_speed_map: map(),
         static_deflection: statics(),

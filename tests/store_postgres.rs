@@ -63,7 +63,7 @@ fn a_job_submitted_to_one_replica_is_read_cancelled_and_fetched_on_another() {
         None,
         &[("accept", "text/csv")],
     );
-    assert!(String::from_utf8_lossy(&csv.body).starts_with("speed,"));
+    assert!(String::from_utf8_lossy(&csv.body).starts_with("speed [rad/s],"));
 
     // A long job: it runs on one replica and is cancelled on the other.
     let id = a.submit(&sweep_job(1500));

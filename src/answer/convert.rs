@@ -32,14 +32,17 @@ pub fn pole(p: &poles::Pole) -> api::Pole {
     }
 }
 
-/// The translations of a mode shape, the largest scaled to 1 (real).
+/// The translations of a mode shape, the largest scaled to 1 (real), each with its node's
+/// slope (the rotation) where the node keeps one.
 fn translations(p: &poles::Pole, dofs: &[Dof]) -> Vec<api::NodeDisplacement> {
-    let t: Vec<(usize, c64)> = dofs
-        .iter()
-        .zip(&p.shape)
-        .filter(|(d, _)| d.kind == DofKind::Translation)
-        .map(|(d, x)| (d.node, *x))
-        .collect();
+    let of = |kind: DofKind| -> Vec<(usize, c64)> {
+        dofs.iter()
+            .zip(&p.shape)
+            .filter(|(d, _)| d.kind == kind)
+            .map(|(d, x)| (d.node, *x))
+            .collect()
+    };
+    let (t, r) = (of(DofKind::Translation), of(DofKind::Rotation));
     let big = t
         .iter()
         .map(|(_, x)| *x)
@@ -53,13 +56,51 @@ fn translations(p: &poles::Pole, dofs: &[Dof]) -> Vec<api::NodeDisplacement> {
     t.into_iter()
         .map(|(node, x)| {
             let v = x * scale;
+            let slope = r.iter().find(|(n, _)| *n == node).map(|(_, phi)| {
+                let s = *phi * scale;
+                [s.re, s.im]
+            });
             api::NodeDisplacement {
                 node,
                 re: v.re,
                 im: v.im,
+                slope,
             }
         })
         .collect()
+}
+
+/// Where a beam rotor's nodes, supports and disks are.
+pub fn shaft_layout(rotor: &crate::model::rotor::Rotor) -> Option<api::ShaftLayout> {
+    let crate::model::rotor::Rotor::Beam(b) = rotor else {
+        return None;
+    };
+    let mut positions = vec![0.0];
+    for e in b.elements() {
+        positions.push(positions[positions.len() - 1] + e.length);
+    }
+    let supports = b
+        .supports()
+        .iter()
+        .map(|s| (s.node, s.seal))
+        .chain(b.general_supports().iter().map(|s| (s.node, s.seal)));
+    let (mut bearings, mut seals) = (vec![], vec![]);
+    for (node, seal) in supports {
+        if seal { &mut seals } else { &mut bearings }.push(node);
+    }
+    for v in [&mut bearings, &mut seals] {
+        v.sort_unstable();
+        v.dedup();
+    }
+    let mut disks: Vec<usize> = b.disks().iter().map(|d| d.node).collect();
+    disks.sort_unstable();
+    disks.dedup();
+    Some(api::ShaftLayout {
+        positions,
+        bearings,
+        seals,
+        disks,
+    })
 }
 
 pub fn modal(r: &ModalResult) -> api::ModalResponse {
@@ -81,6 +122,7 @@ pub fn modal(r: &ModalResult) -> api::ModalResponse {
         natural_frequencies: r.natural_frequencies.clone(),
         states: r.states,
         missing_poles: r.poles.missing(),
+        shaft: None,
     }
 }
 

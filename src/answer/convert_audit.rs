@@ -479,7 +479,11 @@ pub fn report(
             generated: humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string(),
         }),
         rotor: plan.rotor.clone(),
-        operating_range: api::OperatingRange { min: lo, max: hi },
+        operating_range: api::OperatingRange {
+            min: lo,
+            max: hi,
+            unit: None,
+        },
         critical_speed_map: map,
         static_deflection: statics,
         warnings: campbell.warnings.clone(),

@@ -27,7 +27,13 @@ impl Output {
     /// The wire form of an outcome of `task`.
     fn of(o: Outcome, task: &Task) -> Result<Self, ApiError> {
         Ok(match o {
-            Outcome::Modal(r) => Output::Modal(convert::modal(&r)),
+            Outcome::Modal(r) => Output::Modal({
+                let mut m = convert::modal(&r);
+                if let TaskKind::Modal { model, .. } = &task.kind {
+                    m.shaft = convert::shaft_layout(&model.rotor);
+                }
+                m
+            }),
             Outcome::Campbell(r) => Output::Campbell(convert::campbell(&r)),
             Outcome::Stability {
                 threshold,

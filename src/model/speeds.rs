@@ -97,9 +97,21 @@ pub fn logarithmic(a: f64, b: f64, n: usize) -> Vec<f64> {
 pub struct SpeedGrid(Vec<f64>);
 
 impl SpeedGrid {
-    /// Validates `speeds`; `max` is the configured limit on the number of speeds.
+    /// Validates `speeds` (in their unit; the grid is in rad/s); `max` is the configured limit
+    /// on the number of speeds.
     pub fn parse(input: &SpeedsInput, max: usize) -> Result<Self, Invalid> {
-        match input {
+        let unit = input.unit();
+        Self::parse_typed(input, max)
+            .map(|g| SpeedGrid(g.0.into_iter().map(|x| unit.to_rad_s(x)).collect()))
+    }
+
+    /// [`SpeedGrid::parse`] in the unit typed.
+    fn parse_typed(input: &SpeedsInput, max: usize) -> Result<Self, Invalid> {
+        let (input, path) = match input {
+            SpeedsInput::Values(v) => (&SpeedsInput::List(v.values.clone()), "speeds.values"),
+            other => (other, "speeds"),
+        };
+        let r = match input {
             SpeedsInput::Range(r) => {
                 let mut bad = Invalid::default();
                 let start = bad.check("speeds.start", finite(r.start));
@@ -151,7 +163,14 @@ impl SpeedGrid {
                 }
                 bad.into_result(|| SpeedGrid(v.clone()))
             }
-        }
+            SpeedsInput::Values(_) => unreachable!("a list above"),
+        };
+        r.map_err(|mut e| {
+            if path != "speeds" {
+                e.prefix_paths(|p| p.replacen("speeds", path, 1));
+            }
+            e
+        })
     }
 
     pub fn as_slice(&self) -> &[f64] {
@@ -164,12 +183,17 @@ impl SpeedGrid {
     }
 }
 
-/// Validates an operating range (speeds, rad/s).
+/// Validates an operating range (in its unit), in rad/s.
 pub(crate) fn operating_range(
     r: &OperatingRange,
     at: &str,
     bad: &mut Invalid,
 ) -> Option<(f64, f64)> {
+    let unit = r.unit.unwrap_or_default();
+    operating_range_typed(r, at, bad).map(|(lo, hi)| (unit.to_rad_s(lo), unit.to_rad_s(hi)))
+}
+
+fn operating_range_typed(r: &OperatingRange, at: &str, bad: &mut Invalid) -> Option<(f64, f64)> {
     let lo = bad.check(&format!("{at}.min"), positive(r.min));
     let hi = bad.check(&format!("{at}.max"), positive(r.max));
     match (lo, hi) {

@@ -1,4 +1,5 @@
-//! The answer as a table: one row per speed, time or pole.
+//! The answer as a table: one row per speed, time or pole, each column's unit in its header
+//! (`speed [rad/s]`, `phase [rad]`; `[-]` for a ratio).
 
 use crate::answer::Output;
 
@@ -11,7 +12,10 @@ pub fn csv(out: &Output) -> Option<String> {
     let mut s = String::new();
     match out {
         Output::Modal(m) => {
-            s.push_str("decay_rate,frequency,whirl,damping_ratio,log_decrement,whirl_ratio\n");
+            s.push_str(
+                "decay_rate [1/s],frequency [rad/s],whirl,damping_ratio [-],log_decrement [-],\
+                 whirl_ratio [-]\n",
+            );
             for p in &m.poles {
                 let whirl = serde_json::to_value(p.whirl).ok()?.as_str()?.to_string();
                 s.push_str(&format!(
@@ -25,7 +29,7 @@ pub fn csv(out: &Output) -> Option<String> {
             }
         }
         Output::Campbell(c) => {
-            s.push_str("speed");
+            s.push_str("speed [rad/s]");
             for b in &c.branches {
                 let w = if b.whirl == crate::model::api::Whirl::Forward {
                     "forward"
@@ -33,11 +37,11 @@ pub fn csv(out: &Output) -> Option<String> {
                     "backward"
                 };
                 for q in [
-                    "frequency",
-                    "decay_rate",
-                    "log_decrement",
-                    "damping_ratio",
-                    "whirl_ratio",
+                    "frequency [rad/s]",
+                    "decay_rate [1/s]",
+                    "log_decrement [-]",
+                    "damping_ratio [-]",
+                    "whirl_ratio [-]",
                 ] {
                     s.push_str(&format!(",mode{}_{w}_{q}", b.mode));
                 }
@@ -59,15 +63,15 @@ pub fn csv(out: &Output) -> Option<String> {
             }
         }
         Output::Stability(st) => {
-            s.push_str("speed,max_decay_rate\n");
+            s.push_str("speed [rad/s],max_decay_rate [1/s]\n");
             for (w, d) in st.speeds.iter().zip(&st.max_decay_rate) {
                 s.push_str(&format!("{w},{d}\n"));
             }
         }
         Output::Time(t) => {
-            s.push_str("time");
+            s.push_str("time [s]");
             for n in &t.nodes {
-                s.push_str(&format!(",node{}_x,node{}_y", n.node, n.node));
+                s.push_str(&format!(",node{}_x [m],node{}_y [m]", n.node, n.node));
             }
             s.push('\n');
             for (i, time) in t.time.iter().enumerate() {
@@ -79,17 +83,17 @@ pub fn csv(out: &Output) -> Option<String> {
             }
         }
         Output::Unbalance(u) => {
-            s.push_str("speed");
+            s.push_str("speed [rad/s]");
             for n in &u.nodes {
                 for c in [
-                    "amplitude",
-                    "phase",
-                    "x_amplitude",
-                    "x_phase",
-                    "y_amplitude",
-                    "y_phase",
-                    "major",
-                    "minor",
+                    "amplitude [m]",
+                    "phase [rad]",
+                    "x_amplitude [m]",
+                    "x_phase [rad]",
+                    "y_amplitude [m]",
+                    "y_phase [rad]",
+                    "major [m]",
+                    "minor [m]",
                 ] {
                     s.push_str(&format!(",node{}_{c}", n.node));
                 }
@@ -115,9 +119,9 @@ pub fn csv(out: &Output) -> Option<String> {
             }
         }
         Output::CriticalMap(c) => {
-            s.push_str("stiffness");
+            s.push_str("stiffness [N/m]");
             for k in 1..=c.frequencies.len() {
-                s.push_str(&format!(",mode{k}_frequency"));
+                s.push_str(&format!(",mode{k}_frequency [rad/s]"));
             }
             s.push('\n');
             for (i, k) in c.stiffness.iter().enumerate() {
@@ -130,8 +134,8 @@ pub fn csv(out: &Output) -> Option<String> {
         }
         Output::Static(st) => {
             s.push_str(
-                "node,position,deflection,deflection_x,slope,slope_x,reaction,reaction_x,\
-                 shear_left,shear_right,bending_moment\n",
+                "node,position [m],deflection [m],deflection_x [m],slope [rad],slope_x [rad],\
+                 reaction [N],reaction_x [N],shear_left [N],shear_right [N],bending_moment [N m]\n",
             );
             // Shear left and right of a node (it jumps by the node's forces), moment there.
             let left = |k: usize| st.stations.iter().rfind(|t| t.element + 1 == k);
@@ -163,7 +167,7 @@ pub fn csv(out: &Output) -> Option<String> {
             }
         }
         Output::Level1(l) => {
-            s.push_str("cross_coupling,log_decrement,frequency\n");
+            s.push_str("cross_coupling [N/m],log_decrement [-],frequency [rad/s]\n");
             for (i, q) in l.cross_coupling.iter().enumerate() {
                 s.push_str(&format!(
                     "{q},{},{}\n",
@@ -174,8 +178,8 @@ pub fn csv(out: &Output) -> Option<String> {
         }
         Output::Frequency(f) => {
             s.push_str(
-                "frequency,amplitude,phase,x_amplitude,x_phase,y_amplitude,y_phase,forward,\
-                 backward\n",
+                "frequency [rad/s],amplitude [m/N],phase [rad],x_amplitude [m/N],x_phase [rad],\
+                 y_amplitude [m/N],y_phase [rad],forward [m/N],backward [m/N]\n",
             );
             for i in 0..f.frequencies.len() {
                 s.push_str(&format!(

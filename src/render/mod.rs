@@ -1,12 +1,14 @@
 //! Rendering: an answer as a document, knowing neither HTTP nor the store. JSON (the answer
 //! itself), a table ([`csv()`]: `text/csv`), a plot ([`plot`], and [`plot_audit`] for the
-//! audit's analyses: `image/svg+xml`) or the audit report ([`report`]: one self-contained
+//! audit's analyses: `image/svg+xml`, or rasterised from that SVG by [`png`]: `image/png`) or
+//! the audit report ([`report`]: one self-contained
 //! `text/html` page). [`render()`] writes an [`Output`] in the first of the formats a client
 //! accepts that it has.
 
 mod csv;
 pub mod plot;
 pub mod plot_audit;
+pub mod png;
 pub mod report;
 
 pub use csv::csv;
@@ -19,6 +21,7 @@ pub enum Format {
     Json,
     Csv,
     Svg,
+    Png,
     Html,
 }
 
@@ -28,6 +31,7 @@ impl Format {
             Format::Json => "application/json",
             Format::Csv => "text/csv",
             Format::Svg => "image/svg+xml",
+            Format::Png => "image/png",
             Format::Html => "text/html; charset=utf-8",
         }
     }
@@ -48,6 +52,10 @@ pub fn render(out: &Output, formats: &[Format]) -> Result<Rendered, ApiError> {
             }
             Format::Csv => csv(out).map(String::into_bytes),
             Format::Svg => svg(out)?.map(String::into_bytes),
+            Format::Png => match svg(out)? {
+                Some(s) => Some(png::png(&s).map_err(|e| ApiError::Internal(format!("PNG: {e}")))?),
+                None => None,
+            },
             Format::Html => html(out)?.map(String::into_bytes),
         };
         if let Some(body) = body {
@@ -75,6 +83,7 @@ fn supported(out: &Output) -> Vec<&'static str> {
     };
     if plotted {
         v.push("image/svg+xml");
+        v.push("image/png");
     }
     if matches!(out, Output::Report(_)) {
         v.push("text/html");
@@ -111,6 +120,49 @@ fn svg(out: &Output) -> Result<Option<String>, ApiError> {
         },
         _ => return Ok(None),
     };
-    r.map(Some)
+    r.map(|s| Some(titled(&s, title(out))))
         .map_err(|e| ApiError::Internal(format!("plot: {e}")))
+}
+
+/// What a plot shows: its SVG `<title>` (read by screen readers, shown as a tooltip).
+fn title(out: &Output) -> &'static str {
+    match out {
+        Output::Campbell(_) => {
+            "Campbell diagram: whirl frequencies and decay rates against spin speed"
+        }
+        Output::Stability(_) => "Stability: largest decay rate against spin speed",
+        Output::Time(_) => "Time response: displacements against time, and orbits",
+        Output::Unbalance(_) => "Unbalance response: amplitude and phase against spin speed",
+        Output::CriticalMap(_) => {
+            "Undamped critical speed map: frequencies against support stiffness"
+        }
+        Output::Static(_) => "Static deflection, shear force and bending moment along the rotor",
+        Output::Level1(_) => {
+            "API 617 Level I stability: log decrement against cross-coupled stiffness"
+        }
+        Output::Frequency(_) => {
+            "Frequency response: amplitude and phase against excitation frequency"
+        }
+        Output::Modal(_) => "Mode shapes along the rotor",
+        Output::Damping(_) | Output::Report(_) => "Whirl",
+    }
+}
+
+/// `svg` with `<title>` as the first child of its root (kept if it has one).
+fn titled(svg: &str, title: &str) -> String {
+    let Some(start) = svg.find("<svg") else {
+        return svg.to_string();
+    };
+    let Some(end) = svg[start..].find('>').map(|k| start + k + 1) else {
+        return svg.to_string();
+    };
+    if svg[end..].trim_start().starts_with("<title") {
+        return svg.to_string();
+    }
+    format!(
+        "{}\n<title>{}</title>{}",
+        &svg[..end],
+        plot::svg::escape(title),
+        &svg[end..]
+    )
 }

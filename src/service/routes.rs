@@ -107,7 +107,7 @@ const STORE_CHECK: std::time::Duration = std::time::Duration::from_secs(2);
 #[utoipa::path(post, path = "/v1/modal", tag = "analyses", request_body = ModalRequest,
     responses(
         (status = 200, description = "Poles (JSON; the table or the plot by Accept)",
-         content((ModalResponse = "application/json"), (String = "text/csv"))),
+         content((ModalResponse = "application/json"), (String = "text/csv"), (String = "image/svg+xml"), (String = "image/png"))),
         (status = 406, description = "No acceptable format", body = Problem, content_type = "application/problem+json"),
         AnalysisErrors))]
 pub async fn modal(
@@ -131,7 +131,7 @@ pub async fn modal(
 #[utoipa::path(post, path = "/v1/campbell", tag = "analyses", request_body = SweepRequest,
     responses(
         (status = 200, description = "Branches (JSON; the table or the plot by Accept)",
-         content((CampbellResponse = "application/json"), (String = "text/csv"), (String = "image/svg+xml"))),
+         content((CampbellResponse = "application/json"), (String = "text/csv"), (String = "image/svg+xml"), (String = "image/png"))),
         (status = 406, description = "No acceptable format", body = Problem, content_type = "application/problem+json"),
         AnalysisErrors))]
 pub async fn campbell(
@@ -153,7 +153,7 @@ pub async fn campbell(
 #[utoipa::path(post, path = "/v1/stability", tag = "analyses", request_body = SweepRequest,
     responses(
         (status = 200, description = "Threshold (JSON; the table or the plot by Accept)",
-         content((StabilityResponse = "application/json"), (String = "text/csv"), (String = "image/svg+xml"))),
+         content((StabilityResponse = "application/json"), (String = "text/csv"), (String = "image/svg+xml"), (String = "image/png"))),
         (status = 406, description = "No acceptable format", body = Problem, content_type = "application/problem+json"),
         AnalysisErrors))]
 pub async fn stability(
@@ -199,7 +199,7 @@ pub async fn damping_matrices(
 #[utoipa::path(post, path = "/v1/time-response", tag = "analyses", request_body = TimeResponseRequest,
     responses(
         (status = 200, description = "Displacements of the nodes (JSON; the table or the plot by Accept)",
-         content((TimeResponseResponse = "application/json"), (String = "text/csv"), (String = "image/svg+xml"))),
+         content((TimeResponseResponse = "application/json"), (String = "text/csv"), (String = "image/svg+xml"), (String = "image/png"))),
         (status = 406, description = "No acceptable format", body = Problem, content_type = "application/problem+json"),
         AnalysisErrors))]
 pub async fn time_response(
@@ -222,7 +222,7 @@ pub async fn time_response(
 #[utoipa::path(post, path = "/v1/unbalance-response", tag = "analyses", request_body = UnbalanceResponseRequest,
     responses(
         (status = 200, description = "Amplitude and phase per node and speed (JSON; the table or the plot by Accept)",
-         content((UnbalanceResponseResponse = "application/json"), (String = "text/csv"), (String = "image/svg+xml"))),
+         content((UnbalanceResponseResponse = "application/json"), (String = "text/csv"), (String = "image/svg+xml"), (String = "image/png"))),
         (status = 406, description = "No acceptable format", body = Problem, content_type = "application/problem+json"),
         AnalysisErrors))]
 pub async fn unbalance_response(
@@ -326,7 +326,7 @@ pub async fn get_job(
         ("If-None-Match" = Option<String>, Header, description = "ETags of copies the client holds")),
     responses(
         (status = 200, description = "The analysis result",
-         content((Object = "application/json"), (String = "text/csv"), (String = "image/svg+xml")),
+         content((Object = "application/json"), (String = "text/csv"), (String = "image/svg+xml"), (String = "image/png")),
          headers(("ETag" = String, description = "The result in this representation (weak: the same for every content coding)"),
                  ("Cache-Control" = String, description = "`private, max-age=31536000, immutable`"))),
         (status = 304, description = "Not modified: the copy whose ETag was sent is current",

@@ -26,7 +26,7 @@ use crate::model::api::{
 #[utoipa::path(post, path = "/v1/critical-speed-map", tag = "audit", request_body = CriticalSpeedMapRequest,
     responses(
         (status = 200, description = "Frequencies per mode and stiffness (JSON; the table or the log-log map by Accept)",
-         content((CriticalSpeedMapResponse = "application/json"), (String = "text/csv"), (String = "image/svg+xml"))),
+         content((CriticalSpeedMapResponse = "application/json"), (String = "text/csv"), (String = "image/svg+xml"), (String = "image/png"))),
         (status = 406, description = "No acceptable format", body = Problem, content_type = "application/problem+json"),
         AnalysisErrors))]
 pub async fn critical_speed_map(
@@ -48,7 +48,7 @@ pub async fn critical_speed_map(
 #[utoipa::path(post, path = "/v1/static", tag = "audit", request_body = StaticRequest,
     responses(
         (status = 200, description = "Deflections, reactions, shear and moment (JSON; the table or the plot by Accept)",
-         content((StaticResponse = "application/json"), (String = "text/csv"), (String = "image/svg+xml"))),
+         content((StaticResponse = "application/json"), (String = "text/csv"), (String = "image/svg+xml"), (String = "image/png"))),
         (status = 406, description = "No acceptable format", body = Problem, content_type = "application/problem+json"),
         AnalysisErrors))]
 pub async fn static_deflection(
@@ -71,7 +71,7 @@ pub async fn static_deflection(
 #[utoipa::path(post, path = "/v1/level1", tag = "audit", request_body = Level1Request,
     responses(
         (status = 200, description = "Log decrement against cross-coupling, and q0 (JSON; the table or the plot by Accept)",
-         content((Level1Response = "application/json"), (String = "text/csv"), (String = "image/svg+xml"))),
+         content((Level1Response = "application/json"), (String = "text/csv"), (String = "image/svg+xml"), (String = "image/png"))),
         (status = 406, description = "No acceptable format", body = Problem, content_type = "application/problem+json"),
         AnalysisErrors))]
 pub async fn level1(
@@ -93,7 +93,7 @@ pub async fn level1(
 #[utoipa::path(post, path = "/v1/frequency-response", tag = "audit", request_body = FrequencyResponseRequest,
     responses(
         (status = 200, description = "Transfer function (JSON; the table or the Bode plot by Accept)",
-         content((FrequencyResponseResponse = "application/json"), (String = "text/csv"), (String = "image/svg+xml"))),
+         content((FrequencyResponseResponse = "application/json"), (String = "text/csv"), (String = "image/svg+xml"), (String = "image/png"))),
         (status = 406, description = "No acceptable format", body = Problem, content_type = "application/problem+json"),
         AnalysisErrors))]
 pub async fn frequency_response(

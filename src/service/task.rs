@@ -37,7 +37,9 @@ pub fn negotiate(headers: &HeaderMap) -> Result<Vec<Format>, ApiError> {
             "text/csv" => &[Format::Csv],
             "text/html" | "application/xhtml+xml" => &[Format::Html],
             "text/*" => &[Format::Csv, Format::Html],
-            "image/svg+xml" | "image/*" => &[Format::Svg],
+            "image/svg+xml" => &[Format::Svg],
+            "image/png" => &[Format::Png],
+            "image/*" => &[Format::Svg, Format::Png],
             _ => &[],
         };
         ranked.extend(formats.iter().map(|f| (q, i, *f)));
@@ -46,8 +48,8 @@ pub fn negotiate(headers: &HeaderMap) -> Result<Vec<Format>, ApiError> {
     let out: Vec<Format> = ranked.into_iter().map(|r| r.2).collect();
     if out.is_empty() {
         return Err(ApiError::NotAcceptable(
-            "this API answers application/json, text/csv, image/svg+xml or (the report) \
-             text/html"
+            "this API answers application/json, text/csv, image/svg+xml, image/png or (the \
+             report) text/html"
                 .into(),
         ));
     }

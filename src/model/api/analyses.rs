@@ -82,6 +82,25 @@ pub struct NodeDisplacement {
     pub node: usize,
     pub re: f64,
     pub im: f64,
+    /// Slope `d(x + i y)/dz` there (the rotation `phi_y - i phi_x`), 1/m, on the same scale as
+    /// the translation, `[re, im]`: where a beam rotor's node keeps its rotation. With the next
+    /// node's, the element's cubic shape functions give the shape between them.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub slope: Option<[f64; 2]>,
+}
+
+/// Where a beam rotor's nodes, supports and disks are along the shaft (for its mode shapes).
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct ShaftLayout {
+    /// Axial position of each node, m, from node 0.
+    pub positions: Vec<f64>,
+    /// Nodes with a bearing (or any support that is not a seal).
+    pub bearings: Vec<usize>,
+    /// Nodes with a seal.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub seals: Vec<usize>,
+    /// Nodes with a disk.
+    pub disks: Vec<usize>,
 }
 
 /// Answer of `POST /v1/modal`.
@@ -99,6 +118,9 @@ pub struct ModalResponse {
     /// speed: no sign-consistent root), counted against the number of rotor poles (2 per
     /// complex degree of freedom).
     pub missing_poles: usize,
+    /// A beam rotor's nodes, supports and disks along the shaft.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shaft: Option<ShaftLayout>,
     /// How the model was read where it needed saying: supports held at the ends of their
     /// tables of coefficients outside them.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]

@@ -418,7 +418,7 @@ pub struct FrequencyResponseRequest {
     pub speed: f64,
     pub input: ResponseInput,
     pub output: ResponseOutput,
-    /// Excitation frequencies, rad/s (> 0): a grid or a list.
+    /// Excitation frequencies (> 0): a grid or a list, in rad/s unless its `unit` says.
     pub frequencies: SpeedsInput,
     /// Whether the response may be solved on a checked modal reduction (default true; see
     /// `/v1/unbalance-response`). The answer's `reduction` says what was solved.
@@ -453,14 +453,17 @@ pub struct FrequencyResponseResponse {
     pub warnings: Vec<String>,
 }
 
-/// `[low, high]` operating speeds, rad/s.
+/// `[low, high]` operating speeds, in `unit` (rad/s unless it says).
 #[derive(Debug, Clone, Copy, Deserialize, Serialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct OperatingRange {
-    /// Minimum operating speed, rad/s.
+    /// Minimum operating speed.
     pub min: f64,
-    /// Maximum continuous speed, rad/s.
+    /// Maximum continuous speed.
     pub max: f64,
+    /// Unit of `min` and `max` (default rad/s).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub unit: Option<super::SpeedUnit>,
 }
 
 /// A resonance peak of an unbalance response curve.

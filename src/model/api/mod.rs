@@ -11,12 +11,14 @@ mod audit;
 mod loads;
 mod report;
 mod service;
+mod units;
 
 pub use analyses::*;
 pub use audit::*;
 pub use loads::*;
 pub use report::*;
 pub use service::*;
+pub use units::*;
 
 use serde::{Deserialize, Deserializer, Serialize};
 use serde_json::Value;
@@ -401,21 +403,55 @@ pub struct BranchesInput {
     pub nu: Option<Vec<f64>>,
 }
 
-/// Spin speeds: a uniform grid `{start, stop, count}` or an explicit increasing list.
+/// Spin speeds: a uniform grid `{start, stop, count, unit}`, an explicit increasing list in
+/// rad/s, or one in a unit, `{values, unit}`.
 #[derive(Debug, Clone, Serialize, ToSchema)]
 #[serde(untagged)]
 pub enum SpeedsInput {
     Range(SpeedRange),
     List(Vec<f64>),
+    Values(SpeedValues),
+}
+
+impl SpeedsInput {
+    /// The unit the numbers are in.
+    pub fn unit(&self) -> SpeedUnit {
+        match self {
+            SpeedsInput::Range(r) => r.unit.unwrap_or_default(),
+            SpeedsInput::List(_) => SpeedUnit::RadPerSecond,
+            SpeedsInput::Values(v) => v.unit,
+        }
+    }
+
+    /// The numbers of a list, as typed.
+    pub fn list(&self) -> Option<&[f64]> {
+        match self {
+            SpeedsInput::Range(_) => None,
+            SpeedsInput::List(l) => Some(l),
+            SpeedsInput::Values(v) => Some(&v.values),
+        }
+    }
+}
+
+/// An explicit increasing list of speeds in `unit`.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SpeedValues {
+    pub values: Vec<f64>,
+    pub unit: SpeedUnit,
 }
 
 impl<'de> Deserialize<'de> for SpeedsInput {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
         match Value::deserialize(d)? {
+            v @ Value::Object(_) if v.get("values").is_some() => {
+                variant(v).map(SpeedsInput::Values)
+            }
             v @ Value::Object(_) => variant(v).map(SpeedsInput::Range),
             v @ Value::Array(_) => variant(v).map(SpeedsInput::List),
             _ => Err(serde::de::Error::custom(
-                "must be {\"start\", \"stop\", \"count\"} or a list of speeds",
+                "must be {\"start\", \"stop\", \"count\", \"unit\"}, a list of speeds in rad/s \
+                 or {\"values\", \"unit\"}",
             )),
         }
     }
@@ -425,12 +461,15 @@ impl<'de> Deserialize<'de> for SpeedsInput {
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SpeedRange {
-    /// First speed, rad/s (>= 0).
+    /// First speed, in `unit` (>= 0).
     #[schema(minimum = 0.0)]
     pub start: f64,
-    /// Last speed, rad/s (> start).
+    /// Last speed, in `unit` (> start).
     pub stop: f64,
     /// Number of speeds (>= 2).
     #[schema(minimum = 2)]
     pub count: i64,
+    /// Unit of `start` and `stop` (default rad/s); the grid is uniform in it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub unit: Option<SpeedUnit>,
 }

@@ -360,11 +360,17 @@ impl FrequencyResponseRequest {
         let speed = bad.check("speed", non_negative(self.speed));
         let exc = excitation(&self.input.direction, &mut bad);
         // One frequency is a valid question here (a sweep needs two speeds).
-        let freqs = match &self.frequencies {
-            SpeedsInput::List(l) if l.len() == 1 => {
-                bad.check("frequencies[0]", positive(l[0])).map(|w| vec![w])
+        let unit = self.frequencies.unit();
+        let freqs = match self.frequencies.list() {
+            Some([f]) => {
+                let at = match self.frequencies {
+                    SpeedsInput::Values(_) => "frequencies.values[0]",
+                    _ => "frequencies[0]",
+                };
+                bad.check(at, positive(*f)).map(|f| vec![unit.to_rad_s(f)])
             }
-            input => match crate::model::speeds::SpeedGrid::parse(input, limits.max_speeds) {
+            _ => match crate::model::speeds::SpeedGrid::parse(&self.frequencies, limits.max_speeds)
+            {
                 Ok(g) => Some(g.as_slice().to_vec()),
                 Err(mut e) => {
                     // The grid's messages name `speeds`: this field is `frequencies`.

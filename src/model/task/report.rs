@@ -105,6 +105,7 @@ impl ReportRequest {
                 start: 0.0,
                 stop: SWEEP_OVER_MCS * hi,
                 count: 121,
+                unit: None,
             }));
         // API 684's unbalance: 6350 W / N g mm at the heaviest disk (or mid-shaft).
         let unbalances = self.unbalances.clone().unwrap_or_else(|| {
@@ -181,6 +182,7 @@ impl ReportRequest {
                 start: 0.0,
                 stop: SWEEP_OVER_MCS * hi,
                 count: 481,
+                unit: None,
             }));
         let unbalance_for = |damping: &DampingInput| {
             UnbalanceResponseRequest {

@@ -52,6 +52,23 @@ pub fn decay_range(values: impl IntoIterator<Item = f64>) -> (f64, f64, Option<f
     (lo - 0.06 * span, top + 0.06 * span, clipped)
 }
 
+/// The bottom of the decay-rate axis when heavily damped modes (a seal's, an overdamped
+/// pair's) would flatten the lightly damped ones that matter: four times the median negative
+/// decay rate, when the lowest is more than twice that; with the lowest, for the note.
+fn light_floor(values: &[f64]) -> Option<(f64, f64)> {
+    let mut neg: Vec<f64> = values
+        .iter()
+        .copied()
+        .filter(|v| v.is_finite() && *v < 0.0)
+        .collect();
+    if neg.len() < 4 {
+        return None;
+    }
+    neg.sort_by(f64::total_cmp);
+    let floor = 4.0 * neg[neg.len() / 2];
+    (neg[0] < 2.0 * floor).then_some((floor, neg[0]))
+}
+
 /// Campbell diagram (|frequency| against speed) over the decay-rate plot.
 pub fn campbell(c: &CampbellResponse) -> Result<String, Err> {
     campbell_with(c, None)
@@ -190,7 +207,10 @@ pub fn campbell_with(c: &CampbellResponse, shade: Option<[f64; 2]>) -> Result<St
                 .flat_map(|o| o.decay_rate.iter().flatten().copied())
                 .filter(|_| c.overdamped.len() < 2 * c.branches.len().max(1)),
         );
-    let (d_lo, d_hi, clipped) = decay_range(rates);
+    let rates: Vec<f64> = rates.collect();
+    let (d_lo, d_hi, clipped) = decay_range(rates.iter().copied());
+    let floor = light_floor(&rates);
+    let d_lo = floor.map_or(d_lo, |(f, _)| f - 0.04 * (d_hi - f));
     let shade = clip(shade, x.lo, x.hi);
 
     svg.caption((W / 2.0, 24.0), "Campbell diagram");
@@ -301,6 +321,21 @@ pub fn campbell_with(c: &CampbellResponse, shade: Option<[f64; 2]>) -> Result<St
     }
     if let Some(m) = clipped {
         clipped_note(&mut svg, &bottom, m, 6.0);
+    }
+    if let Some((f, lowest)) = floor {
+        let s = format!(
+            "axis clipped at σ = {} 1/s to show the lightly damped modes (lowest σ: {} 1/s; \
+             every mode's log decrement below)",
+            sig(f, 2),
+            sig(lowest, 3)
+        );
+        svg.text(
+            (bottom.rect[0] + 6.0, bottom.rect[3] - 8.0),
+            &s,
+            12.0,
+            Anchor::Start,
+            RED,
+        );
     }
 
     // Log decrement: how engineers read stability margins off a Campbell diagram.

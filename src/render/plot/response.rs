@@ -1,7 +1,7 @@
 //! The time response (whirl amplitude against time, and the orbits y against x of each node)
 //! and the unbalance response as a Bode plot (amplitude over phase against speed).
 
-use super::svg::{Anchor, Axis, INK, Panel, Stroke, Svg, extent, length_unit, spread};
+use super::svg::{Anchor, Axis, INK, Panel, Stroke, Svg, extent, length_unit, spread, text_width};
 use super::{COLOURS, Err, RPM, speed_label};
 use crate::model::api::{TimeResponseResponse, UnbalanceResponseResponse};
 
@@ -256,20 +256,40 @@ pub fn unbalance(r: &UnbalanceResponseResponse) -> Result<String, Err> {
     Ok(svg.finish())
 }
 
-/// A ring at each peak, labelled with its speed; coincident peaks (symmetric nodes) share.
+/// A ring at each peak, labelled with its speed: one label for the peaks of several nodes at
+/// the same speed (on the highest), right of its ring or left where the plot ends, moved apart
+/// with a leader line to its ring when moved.
 fn peak_marks(svg: &mut Svg, p: &Panel, mut marks: Vec<((f64, f64), &str, f64)>) {
     marks.sort_by(|a, b| a.0.0.total_cmp(&b.0.0));
     marks.dedup_by(|a, b| (a.0.0 - b.0.0).abs() < 2.0 && (a.0.1 - b.0.1).abs() < 2.0);
-    let ys: Vec<f64> = marks.iter().map(|m| m.0.1 - 10.0).collect();
-    let ys = spread(&ys, 14.0, p.rect[1] + 12.0, p.rect[3] - 4.0);
-    for (m, y) in marks.iter().zip(ys) {
+    for m in &marks {
         svg.circle_px(m.0, 5.0, m.1, INK);
-        svg.text(
-            (m.0.0 + 8.0, y),
-            &format!("peak {}", speed_label(m.2)),
-            12.0,
-            Anchor::Start,
-            INK,
-        );
+    }
+    let mut named: Vec<usize> = vec![];
+    for (k, m) in marks.iter().enumerate() {
+        match named.last_mut() {
+            Some(j) if (marks[*j].2 - m.2).abs() <= 5e-3 * m.2.abs() => {
+                if m.0.1 < marks[*j].0.1 {
+                    *j = k;
+                }
+            }
+            _ => named.push(k),
+        }
+    }
+    let ys: Vec<f64> = named.iter().map(|&k| marks[k].0.1 - 10.0).collect();
+    let ys = spread(&ys, 15.0, p.rect[1] + 12.0, p.rect[3] - 4.0);
+    for (&k, y) in named.iter().zip(ys) {
+        let ((x0, y0), _, speed) = marks[k];
+        let s = format!("peak {}", speed_label(speed));
+        let right = x0 + 9.0 + text_width(&s, 12.0) <= p.rect[2] - 2.0;
+        let (x, anchor) = if right {
+            (x0 + 9.0, Anchor::Start)
+        } else {
+            (x0 - 9.0, Anchor::End)
+        };
+        if (y - (y0 - 10.0)).abs() > 6.0 {
+            svg.line_px(&[(x0, y0), (x, y - 4.0)], Stroke::solid(INK, 0.8));
+        }
+        svg.text((x, y), &s, 12.0, anchor, INK);
     }
 }
