@@ -7,6 +7,7 @@
 pub mod api;
 pub mod damping;
 pub mod error;
+pub mod jeffcott;
 pub mod json;
 pub mod limits;
 pub mod loads;
