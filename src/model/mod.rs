@@ -10,6 +10,7 @@ pub mod error;
 pub mod json;
 pub mod limits;
 pub mod loads;
+pub mod objects;
 pub mod rotor;
 pub mod speeds;
 pub mod supports;

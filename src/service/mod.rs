@@ -13,6 +13,7 @@
 
 pub mod config;
 pub mod error;
+pub mod guard;
 pub mod json;
 pub mod metrics;
 pub mod openapi;
@@ -20,6 +21,7 @@ pub mod results;
 pub mod routes;
 pub mod routes_audit;
 pub mod server;
+pub mod slow;
 pub mod task;
 
 use std::sync::Arc;
@@ -115,7 +117,7 @@ pub fn router(state: AppState) -> (Router, utoipa::openapi::OpenApi) {
         .with_state(state.clone())
         .split_for_parts();
     // After the routes: utoipa-axum replaces the component schemas as it registers each one.
-    let api = openapi::for_clients(api);
+    let api = openapi::secured(openapi::for_clients(api));
     let request_id = axum::http::HeaderName::from_static("x-request-id");
     let router = router
         .merge(SwaggerUi::new("/docs").url("/openapi.json", api.clone()))
@@ -128,7 +130,12 @@ pub fn router(state: AppState) -> (Router, utoipa::openapi::OpenApi) {
             Arc::new(allowed_methods(&api)),
             method_problems,
         ))
-        .layer(axum::middleware::from_fn_with_state(state, metrics::track))
+        .layer(axum::middleware::from_fn_with_state(state.clone(), metrics::track))
+        .layer(axum::middleware::from_fn_with_state(
+            state.config.api_token.clone(),
+            guard::require_token,
+        ))
+        .layer(axum::middleware::from_fn(guard::harden))
         .layer(CompressionLayer::new())
         .layer(
             TraceLayer::new_for_http()
@@ -144,7 +151,8 @@ pub fn router(state: AppState) -> (Router, utoipa::openapi::OpenApi) {
                 .on_failure(()),
         )
         .layer(tower_http::request_id::PropagateRequestIdLayer::new(request_id.clone()))
-        .layer(tower_http::request_id::SetRequestIdLayer::new(request_id, RequestIds));
+        .layer(tower_http::request_id::SetRequestIdLayer::new(request_id, RequestIds))
+        .layer(axum::middleware::map_request(guard::bound_request_id));
     (router, api)
 }
 
@@ -238,8 +246,9 @@ async fn method_problems(
     out
 }
 
-/// Request ids `x-request-id` (kept when the client sends one): UUIDv7, unique across
-/// restarts, containers and replicas, and ordered by time.
+/// Request ids `x-request-id` (kept when the client sends an acceptable one, see
+/// [`guard::acceptable_request_id`]): UUIDv7, unique across restarts, containers and replicas,
+/// and ordered by time.
 #[derive(Clone, Default)]
 struct RequestIds;
 

@@ -2,13 +2,13 @@
 //! size lives), runs or submits it, and answers.
 
 use axum::Json;
-use axum::extract::Path;
 use axum::extract::State;
 use axum::http::{HeaderMap, HeaderValue, StatusCode, Uri, header};
 use axum::response::{IntoResponse, Response};
 
 use super::AppState;
 use super::error::ApiError;
+use super::guard::JobId;
 use super::json::ApiJson;
 use super::results;
 use super::task::{negotiate, respond};
@@ -296,7 +296,7 @@ fn in_input(e: ApiError) -> ApiError {
         (status = 503, description = "The job store is unreachable; see Retry-After", body = Problem, content_type = "application/problem+json")))]
 pub async fn get_job(
     State(st): State<AppState>,
-    Path(id): Path<String>,
+    JobId(id): JobId,
 ) -> Result<Json<JobInfo>, ApiError> {
     st.jobs.get(&id).await.map(Json)
 }
@@ -315,7 +315,7 @@ pub async fn get_job(
 pub async fn job_result(
     State(st): State<AppState>,
     headers: HeaderMap,
-    Path(id): Path<String>,
+    JobId(id): JobId,
 ) -> Result<Response, ApiError> {
     let formats = negotiate(&headers)?;
     let row = st.jobs.result(&id).await?;
@@ -352,7 +352,7 @@ fn accepts_gzip(headers: &HeaderMap) -> bool {
         (status = 503, description = "The job store is unreachable; see Retry-After", body = Problem, content_type = "application/problem+json")))]
 pub async fn cancel_job(
     State(st): State<AppState>,
-    Path(id): Path<String>,
+    JobId(id): JobId,
 ) -> Result<Json<JobInfo>, ApiError> {
     st.jobs
         .cancel(&id, "cancelled by the client")
