@@ -78,7 +78,7 @@ fn serve() -> ExitCode {
         }
     };
     init_tracing(config.log_json);
-    raise_file_limit(config.max_connections);
+    raise_file_limit(config.max_connections + whirl::service::server::PROBE_CONNECTIONS);
     fixed_mmap_threshold();
     let rt = match tokio::runtime::Builder::new_multi_thread()
         .enable_all()
@@ -122,6 +122,8 @@ async fn run(config: Config) -> Result<(), String> {
     let grace = config.shutdown_grace;
     let limits = ServerLimits::of(&config);
     let (app, state) = service::app_with_state(config);
+    // One server per data directory: a second one stops here (its jobs would be run twice).
+    state.jobs.store.claim_dir().map_err(|e| e.to_string())?;
     // Connect the job store now (and until it answers): the runner claims jobs from then on.
     let jobs = state.jobs.clone();
     tokio::spawn(async move {

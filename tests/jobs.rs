@@ -426,7 +426,13 @@ async fn an_unreachable_store_fails_readiness_and_jobs_with_503() {
     let (status, headers, _) = call(&app, "POST", "/v1/jobs", Some(job), None).await;
     assert_eq!(status, StatusCode::SERVICE_UNAVAILABLE);
     assert!(headers.contains_key(header::RETRY_AFTER));
-    let (status, _) = json_call(&app, "GET", "/v1/jobs/0000", None).await;
+    let (status, _) = json_call(
+        &app,
+        "GET",
+        "/v1/jobs/01890a5d-ac96-774b-bcce-b302099a8057",
+        None,
+    )
+    .await;
     assert_eq!(status, StatusCode::SERVICE_UNAVAILABLE);
     let (status, _) = json_call(&app, "POST", "/v1/campbell", Some(input)).await;
     assert_eq!(status, StatusCode::OK, "analyses do not need the store");

@@ -223,8 +223,10 @@ impl Jobs {
     }
 
     /// Stops taking and claiming jobs; lets this replica's running jobs finish within `grace`,
-    /// then hands what is left back to the queue, each logged (see [`Runner::shutdown`]).
+    /// then hands what is left back to the queue, each logged (see [`Runner::shutdown`]); the
+    /// data directory is then free for the next server.
     pub async fn shutdown(&self, grace: Duration) {
         self.runner.shutdown(grace).await;
+        self.store.release_dir();
     }
 }

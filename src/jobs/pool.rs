@@ -10,9 +10,12 @@
 //! - **Memory.** A long analysis holds its estimated peak heap (see `model::limits`) from a
 //!   budget while it runs, and waits when the budget is spent; one that could never fit is
 //!   refused at admission (422). Short analyses are bounded by their lane's count instead.
-//! - **Admission.** At most `workers + queue` synchronous analyses are running or waiting;
-//!   beyond that a request is refused at once with 503 and `Retry-After` rather than piling up
-//!   memory.
+//!   A synchronous answer then holds its size from the same budget until the client has
+//!   read it ([`WorkerPool::run_answer`]): slow readers cannot pile answers up beside it.
+//! - **Admission.** Each lane counts its own: at most `workers + queue` long analyses and
+//!   `2 x threads + queue` short ones are running or waiting; beyond that a request is refused
+//!   at once with 503 and `Retry-After` rather than piling up memory. Long sweeps filling
+//!   their queue never refuse a short request.
 //! - **Jobs** wait in the shared queue (`jobs::store`), not here: a replica claims one only
 //!   with a free worker of its lane in hand ([`WorkerPool::try_worker`]) and when its memory
 //!   estimate fits the free budget, so claims respect each replica's workers and memory.
@@ -59,7 +62,10 @@ pub struct WorkerPool {
     /// The memory budget of the long lane, in MiB permits.
     memory: Arc<Semaphore>,
     budget_mib: u64,
+    /// Long analyses running or waiting (admission of the long lane).
     in_flight: Arc<AtomicUsize>,
+    /// Short analyses running or waiting (admission of the short lane).
+    short_in_flight: Arc<AtomicUsize>,
     workers: usize,
     queue: usize,
     threads: usize,
@@ -80,6 +86,17 @@ pub struct Reserved {
     worker: OwnedSemaphorePermit,
     memory: Option<OwnedSemaphorePermit>,
     mib: u32,
+}
+
+/// Memory of the budget held for an answer until it is sent (see
+/// [`WorkerPool::run_answer`]).
+pub struct AnswerHold(Option<OwnedSemaphorePermit>);
+
+impl AnswerHold {
+    /// Bytes held.
+    pub fn bytes(&self) -> u64 {
+        self.0.as_ref().map_or(0, |m| m.num_permits() as u64 * MIB)
+    }
 }
 
 struct Slot(Arc<AtomicUsize>);
@@ -118,6 +135,7 @@ impl WorkerPool {
             memory: Arc::new(Semaphore::new(budget_mib as usize)),
             budget_mib,
             in_flight: Arc::new(AtomicUsize::new(0)),
+            short_in_flight: Arc::new(AtomicUsize::new(0)),
             workers,
             queue,
             threads: threads.max(1),
@@ -125,14 +143,25 @@ impl WorkerPool {
         }
     }
 
-    /// Whether a new analysis would be accepted now.
+    /// Whether a new long analysis would be accepted now.
     pub fn ready(&self) -> bool {
         self.in_flight.load(Ordering::SeqCst) < self.workers + self.queue
     }
 
-    /// Analyses running or waiting.
+    /// Analyses running or waiting (both lanes).
     pub fn in_flight(&self) -> usize {
-        self.in_flight.load(Ordering::SeqCst)
+        self.in_flight.load(Ordering::SeqCst) + self.short_in_flight.load(Ordering::SeqCst)
+    }
+
+    /// The admission counter and bound of a lane.
+    fn counter(&self, lane: Lane) -> (&Arc<AtomicUsize>, usize) {
+        match lane {
+            Lane::Short => (
+                &self.short_in_flight,
+                SHORT_PER_CORE * self.threads + self.queue,
+            ),
+            Lane::Long => (&self.in_flight, self.workers + self.queue),
+        }
     }
 
     /// Analyses running now (both lanes).
@@ -173,12 +202,14 @@ impl WorkerPool {
     }
 
     /// Takes a place for an analysis of this cost: 422 when it could never fit in the memory
-    /// budget (`path`: the field that sizes it), 503 when workers and queue are full.
+    /// budget (`path`: the field that sizes it), 503 when its lane's workers and queue are
+    /// full.
     pub fn admit(&self, cost: &Cost, path: &str) -> Result<Admission, ApiError> {
         let (lane, mib) = self.needs(cost, path)?;
-        let before = self.in_flight.fetch_add(1, Ordering::SeqCst);
-        let slot = Slot(self.in_flight.clone());
-        if before >= self.workers + self.queue {
+        let (counter, bound) = self.counter(lane);
+        let before = counter.fetch_add(1, Ordering::SeqCst);
+        let slot = Slot(counter.clone());
+        if before >= bound {
             return Err(ApiError::Busy);
         }
         Ok(Admission {
@@ -204,9 +235,10 @@ impl WorkerPool {
 
     /// A claimed job's place: the worker taken for it, and its memory if free now (else it is
     /// waited for when the job runs). Counted in flight, beyond the queue bound (the job was
-    /// admitted to the shared queue).
-    pub fn reserve(&self, worker: OwnedSemaphorePermit, mib: u64) -> Reserved {
-        self.in_flight.fetch_add(1, Ordering::SeqCst);
+    /// admitted to the shared queue), in its lane.
+    pub fn reserve(&self, lane: Lane, worker: OwnedSemaphorePermit, mib: u64) -> Reserved {
+        let (counter, _) = self.counter(lane);
+        counter.fetch_add(1, Ordering::SeqCst);
         let mib = mib.min(self.budget_mib) as u32;
         let memory = if mib > 0 {
             self.memory.clone().try_acquire_many_owned(mib).ok()
@@ -214,7 +246,7 @@ impl WorkerPool {
             None
         };
         Reserved {
-            _slot: Slot(self.in_flight.clone()),
+            _slot: Slot(counter.clone()),
             worker,
             memory,
             mib,
@@ -254,6 +286,67 @@ impl WorkerPool {
         started();
         let kind = admission.lane;
         self.spawn(kind, (permit, memory, admission), f).await
+    }
+
+    /// Runs an admitted analysis like [`run`](Self::run), for an answer that stays in memory
+    /// until the client has taken it: `f` returns the answer and its size in bytes, and that
+    /// many bytes of the memory budget are held by the returned [`AnswerHold`] until it is
+    /// dropped (with the answer's last chunk). They are taken from what the analysis held
+    /// before its worker and memory are let go (a short analysis holds none: it waits for them
+    /// with its worker still in hand), so the answers waiting for slow readers and the
+    /// analyses running never hold more than the budget together.
+    pub async fn run_answer<T, F>(
+        &self,
+        admission: Admission,
+        f: F,
+    ) -> Result<(T, AnswerHold), ApiError>
+    where
+        T: Send + 'static,
+        F: FnOnce() -> (T, u64) + Send + 'static,
+    {
+        let memory = if admission.mib > 0 {
+            Some(
+                self.memory
+                    .clone()
+                    .acquire_many_owned(admission.mib)
+                    .await
+                    .map_err(closed)?,
+            )
+        } else {
+            None
+        };
+        let lane = match admission.lane {
+            Lane::Short => self.short.clone(),
+            Lane::Long => self.long.clone(),
+        };
+        let permit = lane.acquire_owned().await.map_err(closed)?;
+        let kind = admission.lane;
+        // The blocking thread hands the permits back with the answer instead of dropping them.
+        let ((out, bytes), (permit, memory, admission)) = self
+            .spawn(kind, (), move || (f(), (permit, memory, admission)))
+            .await?;
+        let need = (bytes.div_ceil(MIB) as u32).min(self.budget_mib as u32);
+        let mut hold = memory;
+        let have = hold.as_ref().map_or(0, |m| m.num_permits() as u32);
+        if have > need {
+            hold = hold.and_then(|mut m| m.split(need as usize));
+        } else if have < need {
+            let more = self
+                .memory
+                .clone()
+                .acquire_many_owned(need - have)
+                .await
+                .map_err(closed)?;
+            hold = Some(match hold {
+                Some(mut m) => {
+                    m.merge(more);
+                    m
+                }
+                None => more,
+            });
+        }
+        drop((permit, admission));
+        Ok((out, AnswerHold(hold)))
     }
 
     /// Runs a reserved job's analysis like [`run`](Self::run), first waiting for its memory if
@@ -407,6 +500,28 @@ mod tests {
         tokio::time::timeout(std::time::Duration::from_secs(20), test)
             .await
             .expect("the pool test must not hang");
+    }
+
+    #[test]
+    fn a_full_long_queue_still_admits_short_analyses() {
+        // 1 worker and 1 waiting place: two long sweeps fill the long lane.
+        let pool = WorkerPool::new(1, 1, 2, 1 << 30);
+        let long = cost(1e12, 1 << 20);
+        let short = cost(1e6, 1 << 20);
+        let held: Vec<Admission> = (0..2)
+            .map(|_| pool.admit(&long, "rotor").unwrap())
+            .collect();
+        assert!(matches!(pool.admit(&long, "rotor"), Err(ApiError::Busy)));
+        // The short lane has its own count: 2 per core x 2 threads running + 1 waiting.
+        let shorts: Vec<Admission> = (0..5)
+            .map(|_| pool.admit(&short, "rotor").unwrap())
+            .collect();
+        assert!(matches!(pool.admit(&short, "rotor"), Err(ApiError::Busy)));
+        assert_eq!(pool.in_flight(), 7);
+        drop(shorts);
+        drop(held);
+        assert_eq!(pool.in_flight(), 0);
+        assert!(pool.admit(&short, "rotor").is_ok());
     }
 
     #[tokio::test(flavor = "multi_thread", worker_threads = 2)]

@@ -17,12 +17,15 @@
 //!   next check. A cancel received here stops it at once.
 //! - **Time limit.** A job running past `WHIRL_JOB_TIME_LIMIT` is recorded as failed with the
 //!   reason, and its analysis is stopped.
-//! - **Losing the store.** A worker that cannot renew a lease for a whole lease stops the job,
-//!   because another replica may have re-queued it by then, and records nothing. A worker that
-//!   cannot record an end retries for a lease, then leaves the job to the lease expiry.
+//! - **Losing the store.** A worker keeps its job while it cannot reach the store, and renews
+//!   the lease when it can again; only if another replica re-queued the job meanwhile (the
+//!   renewal then matches no row) does it stop. A worker that cannot record an end retries
+//!   until the store answers (for a lease at most once the server is shutting down).
 //! - **Maintenance**, every quarter lease (between 0.25 and 2 s): jobs whose lease ran out are
 //!   re-queued once and failed the second time (any replica does it; the update is atomic),
-//!   and retention is applied.
+//!   but only by a replica that has reached the store for a whole lease since it last found it
+//!   unreachable: after an outage the workers that kept their jobs renew them first, so an
+//!   expiry is a server that is gone, not an outage. Retention is applied too.
 //! - **Shutdown.** No more claims or submissions. Running jobs get the grace, and what is left
 //!   is handed back to the queue, each logged, to run again from the start on another replica
 //!   or after the restart. Queued jobs stay queued.
@@ -182,7 +185,7 @@ impl Runner {
                 let _ = self.store.release(&job.id, &self.worker).await;
                 return;
             };
-            let reserved = self.pool.reserve(worker, job.memory_mib);
+            let reserved = self.pool.reserve(job.lane, worker, job.memory_mib);
             tracing::info!(
                 job = %job.id,
                 analysis = %job.analysis,
@@ -290,7 +293,8 @@ impl Runner {
     /// Records a job's end (retrying for a lease while the store is unreachable), then applies
     /// the retention.
     async fn record(&self, id: &str, ending: Ending) {
-        let deadline = Instant::now() + self.config.job_lease;
+        let lease = self.config.job_lease;
+        let mut deadline = None;
         loop {
             match self.store.finish(id, &self.worker, &ending).await {
                 Ok(true) => {
@@ -308,14 +312,18 @@ impl Runner {
                 }
                 Err(e) => {
                     self.metrics.store_error();
-                    if Instant::now() > deadline {
+                    // Kept while the server lives; a lease more once it is shutting down.
+                    if !self.accepting()
+                        && *deadline.get_or_insert_with(|| Instant::now() + lease) < Instant::now()
+                    {
                         tracing::error!(
                             job = id, error = %e,
-                            "could not record the job's end: its lease runs out and it is re-queued"
+                            "could not record the job's end before shutting down: its lease runs \
+                             out and it is re-queued"
                         );
                         break;
                     }
-                    tokio::time::sleep(HEARTBEAT * 2).await;
+                    tokio::time::sleep(HEARTBEAT).await;
                 }
             }
         }
@@ -326,10 +334,12 @@ impl Runner {
     }
 
     /// Renews the lease of a job running here and writes its progress, until it ends or is
-    /// stopped elsewhere.
+    /// stopped elsewhere; through an outage of the store too (the job goes on, and the lease is
+    /// renewed when the store answers again).
     async fn heartbeat(self: Arc<Self>, id: String, control: Arc<Control>, stop: Arc<Notify>) {
         let lease = self.config.job_lease;
         let mut renewed = Instant::now();
+        let mut warned = false;
         let mut tick = tokio::time::interval(HEARTBEAT);
         tick.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Delay);
         tick.tick().await;
@@ -343,7 +353,13 @@ impl Runner {
                 Err(_) => Err("no answer".into()),
             };
             match r {
-                Ok(true) => renewed = Instant::now(),
+                Ok(true) => {
+                    if warned {
+                        tracing::info!(job = %id, "job store back: lease renewed, the job goes on");
+                        warned = false;
+                    }
+                    renewed = Instant::now();
+                }
                 Ok(false) => {
                     tracing::info!(job = %id, "job stopped elsewhere: stopping its analysis");
                     control.cancel();
@@ -352,14 +368,13 @@ impl Runner {
                 }
                 Err(e) => {
                     self.metrics.store_error();
-                    if renewed.elapsed() >= lease {
-                        tracing::error!(
+                    if !warned && renewed.elapsed() >= lease {
+                        tracing::warn!(
                             job = %id, error = %e,
-                            "lease lost (the store was unreachable): the job stops here and runs again elsewhere"
+                            "lease not renewed for a lease (the store is unreachable): the job \
+                             goes on here, and its lease is renewed when the store answers"
                         );
-                        control.cancel();
-                        stop.notify_one();
-                        return;
+                        warned = true;
                     }
                 }
             }
@@ -380,6 +395,11 @@ impl Runner {
         loop {
             tokio::time::sleep(every).await;
             if !self.store.connected() {
+                continue;
+            }
+            if !self.store.trusted_for(lease) {
+                // Down, or back for less than a lease: expired leases are not deaths yet.
+                let _ = self.store.ping().await;
                 continue;
             }
             match self.store.reap(&reason).await {

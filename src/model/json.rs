@@ -184,14 +184,15 @@ pub fn parse<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, JsonError> {
     from_value(value)
 }
 
-/// The typed content of a JSON value, naming the path of the bad fields: every unknown field
+/// The typed content of a JSON value, naming the path of the bad fields (an array where an
+/// object is read is one, see [`super::objects`]): every unknown field
 /// (up to [`MAX_UNKNOWN_FIELDS`]: each is taken out and the content read again), then the
 /// first other error.
 pub fn from_value<T: DeserializeOwned>(mut value: Value) -> Result<T, JsonError> {
     let mut bad = Invalid::default();
     let mut removed = 0;
     loop {
-        let e = match serde_path_to_error::deserialize::<_, T>(&value) {
+        let e = match serde_path_to_error::deserialize::<_, T>(super::objects::Objects(&value)) {
             Ok(v) if bad.is_empty() => return Ok(v),
             Ok(_) => return Err(JsonError::Invalid(bad)),
             Err(e) => e,

@@ -265,7 +265,32 @@ pub struct TimeSpec {
     pub reduce: bool,
 }
 
+/// The angle the loads may turn in one step of the exponential integrator at tolerance `tol`:
+/// ETD-RK4's error on a harmonic load goes as `theta^4`; `theta = 0.2` at `tol = 1e-6` keeps
+/// the response within about `tol` of its peak (`tests/exponential.rs`).
+pub fn step_angle(tol: f64) -> f64 {
+    (0.2 * (tol / 1e-6).powf(0.25)).clamp(0.02, 0.5)
+}
+
 impl TimeSpec {
+    /// The fewest steps any integrator takes for this problem, known before any work: with a
+    /// varying speed, an unbalance turns through `int |Omega| dt` from its appearance to the
+    /// end, and a step resolves at most [`step_angle`] of it (the exponential integrator takes
+    /// exactly that step; TR-BDF2, second order, needs steps several times shorter for the
+    /// same tolerance). 0 at a constant speed (the response is exact) or without unbalances.
+    pub fn fewest_steps(&self) -> f64 {
+        if self.speed.constant().is_some() {
+            return 0.0;
+        }
+        let Some(from) = self.unbalances.iter().map(|u| u.from).reduce(f64::min) else {
+            return 0.0;
+        };
+        let from = from.min(self.duration);
+        // Speeds are >= 0: the angle grows with time.
+        let turned = self.speed.angle(self.duration) - self.speed.angle(from);
+        turned.max(0.0) / step_angle(self.tolerance)
+    }
+
     /// Output times `0, dt, 2 dt, ...` up to and including `duration` (each the double nearest
     /// `k dt` when `dt` is a decimal: `0.0003`, not `0.00030000000000000003`).
     pub fn output_times(&self) -> Vec<f64> {

@@ -11,6 +11,7 @@ pub mod jeffcott;
 pub mod json;
 pub mod limits;
 pub mod loads;
+pub mod objects;
 pub mod point_masses;
 pub mod rotor;
 pub mod speeds;

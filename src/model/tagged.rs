@@ -37,7 +37,7 @@ pub fn split_tag<E: Error>(
 
 /// Deserialises a variant's content, keeping the path of a bad field.
 pub fn variant<T: DeserializeOwned, E: Error>(value: Value) -> Result<T, E> {
-    serde_path_to_error::deserialize(value).map_err(|e| {
+    serde_path_to_error::deserialize(super::objects::Objects(&value)).map_err(|e| {
         let path = e.path().to_string();
         let msg = e.into_inner().to_string();
         match split_all(&msg) {

@@ -38,6 +38,8 @@ pub struct Config {
     /// Longest a response write may make no progress.
     pub write_timeout: Duration,
     pub max_connections: usize,
+    /// Open connections from one client address.
+    pub max_connections_per_client: usize,
     pub log_json: bool,
     /// Directory of the embedded job store (SQLite), when there is no `database_url`.
     pub data_dir: std::path::PathBuf,
@@ -49,6 +51,8 @@ pub struct Config {
     pub cors_origins: super::cors::Origins,
     /// The URL clients reach the service at, for absolute problem types; `None`: the request's.
     pub public_url: Option<String>,
+    /// The bearer token every request but the probes and the docs needs, if set.
+    pub api_token: Option<super::guard::ApiToken>,
 }
 
 /// One setting: its variable, its default (as text; `None`: computed) and what it means.
@@ -158,7 +162,7 @@ pub const SETTINGS: &[Setting] = &[
     Setting {
         var: "WHIRL_JOB_LEASE",
         default: "15",
-        meaning: "seconds a running job stays claimed without a heartbeat (sent every 0.25 s); after that it is re-queued once, then failed",
+        meaning: "seconds a running job stays claimed without a heartbeat (sent every 0.25 s); after that it is re-queued once, then failed (after a store outage, only once the store has answered for a lease: the workers renew first)",
     },
     Setting {
         var: "WHIRL_SHUTDOWN_GRACE",
@@ -178,12 +182,22 @@ pub const SETTINGS: &[Setting] = &[
     Setting {
         var: "WHIRL_WRITE_TIMEOUT",
         default: "30",
-        meaning: "seconds a response write may make no progress before the connection is dropped",
+        meaning: "seconds of waiting on a client that does not read its answer, or reads slower than 32 KiB/s over that time, before the connection is dropped",
     },
     Setting {
         var: "WHIRL_MAX_CONNECTIONS",
         default: "1024",
-        meaning: "open connections; beyond it new ones get 503 and are closed",
+        meaning: "open connections; beyond it (and beyond the client's share) new ones get 503 and are closed, but for 16 kept for /healthz and /readyz (headers within 1 s)",
+    },
+    Setting {
+        var: "WHIRL_MAX_CONNECTIONS_PER_CLIENT",
+        default: "256",
+        meaning: "open connections from one client address (behind a proxy, set it to WHIRL_MAX_CONNECTIONS)",
+    },
+    Setting {
+        var: "WHIRL_API_TOKEN",
+        default: "none",
+        meaning: "a secret of at least 16 visible characters: every request but /healthz, /readyz, /docs and /openapi.json then needs `Authorization: Bearer <token>` (401 otherwise); /metrics included",
     },
     Setting {
         var: "WHIRL_CORS_ORIGINS",
@@ -233,6 +247,7 @@ impl Default for Config {
             body_timeout: Duration::from_secs(30),
             write_timeout: Duration::from_secs(30),
             max_connections: 1024,
+            max_connections_per_client: 256,
             log_json: false,
             // A fresh directory per configuration built in code (tests, embedding); the binary
             // reads WHIRL_DATA_DIR, `./data` by default (see `from_lookup`).
@@ -241,6 +256,7 @@ impl Default for Config {
             job_lease: Duration::from_secs(15),
             cors_origins: super::cors::Origins::None,
             public_url: None,
+            api_token: None,
         }
     }
 }
@@ -441,12 +457,22 @@ impl Config {
             body_timeout: seconds(&get, "WHIRL_BODY_TIMEOUT", d.body_timeout, 0.1)?,
             write_timeout: seconds(&get, "WHIRL_WRITE_TIMEOUT", d.write_timeout, 0.1)?,
             max_connections: num(&get, "WHIRL_MAX_CONNECTIONS", d.max_connections, 1)?,
+            max_connections_per_client: num(
+                &get,
+                "WHIRL_MAX_CONNECTIONS_PER_CLIENT",
+                d.max_connections_per_client,
+                1,
+            )?,
             log_json,
             data_dir: get("WHIRL_DATA_DIR").map_or_else(|| "./data".into(), Into::into),
             database_url,
             job_lease: seconds(&get, "WHIRL_JOB_LEASE", d.job_lease, 1.0)?,
             cors_origins,
             public_url,
+            api_token: match get("WHIRL_API_TOKEN").filter(|t| !t.is_empty()) {
+                None => None,
+                Some(t) => Some(super::guard::ApiToken::new(&t)?),
+            },
         })
     }
 }
@@ -496,6 +522,8 @@ mod tests {
             "WHIRL_JOB_LEASE",
             "WHIRL_CORS_ORIGINS",
             "WHIRL_PUBLIC_URL",
+            "WHIRL_API_TOKEN",
+            "WHIRL_MAX_CONNECTIONS_PER_CLIENT",
         ] {
             assert_eq!(vars.iter().filter(|x| **x == v).count(), 1, "{v}");
         }

@@ -169,7 +169,7 @@ pub fn render(st: &AppState, stats: Option<Stats>) -> String {
         st.pool.in_flight().saturating_sub(running)
     ));
     s.push_str(
-        "# HELP whirl_memory_reserved_bytes Heap reserved by running long analyses (estimates).\n",
+        "# HELP whirl_memory_reserved_bytes Heap reserved by running long analyses (estimates) and by answers not yet sent.\n",
     );
     s.push_str(&format!(
         "# TYPE whirl_memory_reserved_bytes gauge\nwhirl_memory_reserved_bytes {}\n",

@@ -14,6 +14,7 @@
 pub mod config;
 pub mod cors;
 pub mod error;
+pub mod guard;
 pub mod json;
 pub mod metrics;
 pub mod openapi;
@@ -23,6 +24,7 @@ pub mod routes;
 pub mod routes_audit;
 pub mod routes_jobs;
 pub mod server;
+pub mod slow;
 pub mod task;
 
 use std::sync::Arc;
@@ -122,7 +124,7 @@ pub fn router(state: AppState) -> (Router, utoipa::openapi::OpenApi) {
         .with_state(state.clone())
         .split_for_parts();
     // After the routes: utoipa-axum replaces the component schemas as it registers each one.
-    let api = openapi::for_clients(api);
+    let api = openapi::secured(openapi::for_clients(api));
     let request_id = axum::http::HeaderName::from_static("x-request-id");
     let router = router
         .merge(SwaggerUi::new("/docs").url("/openapi.json", api.clone()))
@@ -143,6 +145,11 @@ pub fn router(state: AppState) -> (Router, utoipa::openapi::OpenApi) {
             state.clone(),
             metrics::track,
         ))
+        .layer(axum::middleware::from_fn_with_state(
+            state.config.api_token.clone(),
+            guard::require_token,
+        ))
+        .layer(axum::middleware::from_fn(guard::harden))
         .layer(CompressionLayer::new())
         .layer(
             TraceLayer::new_for_http()
@@ -158,7 +165,8 @@ pub fn router(state: AppState) -> (Router, utoipa::openapi::OpenApi) {
                 .on_failure(()),
         )
         .layer(tower_http::request_id::PropagateRequestIdLayer::new(request_id.clone()))
-        .layer(tower_http::request_id::SetRequestIdLayer::new(request_id, RequestIds));
+        .layer(tower_http::request_id::SetRequestIdLayer::new(request_id, RequestIds))
+        .layer(axum::middleware::map_request(guard::bound_request_id));
     // Outermost: a preflight is answered before any other layer sees it.
     let router = match cors::layer(&state.config.cors_origins) {
         Some(layer) => router.layer(layer),
@@ -257,8 +265,9 @@ async fn method_problems(
     out
 }
 
-/// Request ids `x-request-id` (kept when the client sends one): UUIDv7, unique across
-/// restarts, containers and replicas, and ordered by time.
+/// Request ids `x-request-id` (kept when the client sends an acceptable one, see
+/// [`guard::acceptable_request_id`]): UUIDv7, unique across restarts, containers and replicas,
+/// and ordered by time.
 #[derive(Clone, Default)]
 struct RequestIds;
 

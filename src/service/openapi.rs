@@ -15,6 +15,9 @@ use utoipa::OpenApi;
 
 pub use clients::for_clients;
 
+use utoipa::openapi::security::{Http, HttpAuthScheme, SecurityRequirement, SecurityScheme};
+use utoipa::openapi::{Content, Ref, RefOr, ResponseBuilder};
+
 #[derive(OpenApi)]
 #[openapi(
     info(
@@ -36,4 +39,54 @@ struct ApiDoc;
 
 pub fn base() -> utoipa::openapi::OpenApi {
     ApiDoc::openapi()
+}
+
+/// The bearer token (`WHIRL_API_TOKEN`) in the document: a `bearer` scheme, required by every
+/// operation but the probes when the server has a token (`security: [{bearer: []}, {}]`: the
+/// token, or none where none is set), and the 401 each of them may then answer.
+pub fn secured(mut api: utoipa::openapi::OpenApi) -> utoipa::openapi::OpenApi {
+    let mut scheme = Http::new(HttpAuthScheme::Bearer);
+    scheme.description = Some(
+        "`Authorization: Bearer <token>`, when the server is started with WHIRL_API_TOKEN \
+         (every path but /healthz and /readyz)"
+            .into(),
+    );
+    api.components
+        .get_or_insert_with(Default::default)
+        .add_security_scheme("bearer", SecurityScheme::Http(scheme));
+    api.security = Some(vec![
+        SecurityRequirement::new("bearer", Vec::<String>::new()),
+        SecurityRequirement::default(),
+    ]);
+    let unauthorized = ResponseBuilder::new()
+        .description(
+            "The bearer token is missing or not the server's (only with WHIRL_API_TOKEN set)",
+        )
+        .content(
+            "application/problem+json",
+            Content::new(Some(RefOr::Ref(Ref::from_schema_name("Problem")))),
+        )
+        .build();
+    for (path, item) in api.paths.paths.iter_mut() {
+        let probe = matches!(path.as_str(), "/healthz" | "/readyz");
+        for op in [
+            &mut item.get,
+            &mut item.post,
+            &mut item.put,
+            &mut item.patch,
+            &mut item.delete,
+        ]
+        .into_iter()
+        .flatten()
+        {
+            if probe {
+                op.security = Some(vec![SecurityRequirement::default()]);
+            } else {
+                op.responses
+                    .responses
+                    .insert("401".into(), RefOr::T(unauthorized.clone()));
+            }
+        }
+    }
+    api
 }

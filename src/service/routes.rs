@@ -2,13 +2,13 @@
 //! size lives), runs or submits it, and answers.
 
 use axum::Json;
-use axum::extract::Path;
 use axum::extract::State;
 use axum::http::{HeaderMap, HeaderValue, StatusCode, Uri, header};
 use axum::response::{IntoResponse, Response};
 
 use super::AppState;
 use super::error::ApiError;
+use super::guard::JobId;
 use super::json::ApiJson;
 use super::problems::Base;
 use super::task::{negotiate, respond};
@@ -313,7 +313,7 @@ fn in_input(e: ApiError) -> ApiError {
 pub async fn get_job(
     State(st): State<AppState>,
     base: Base,
-    Path(id): Path<String>,
+    JobId(id): JobId,
 ) -> Result<Json<JobInfo>, ApiError> {
     st.jobs.get(&id).await.map(|j| Json(base.job(j)))
 }
@@ -338,7 +338,7 @@ pub async fn get_job(
 pub async fn job_result(
     State(st): State<AppState>,
     headers: HeaderMap,
-    Path(id): Path<String>,
+    JobId(id): JobId,
 ) -> Result<Response, ApiError> {
     let formats = negotiate(&headers)?;
     let row = st.jobs.result(&id).await?;
@@ -383,7 +383,7 @@ fn accepts_gzip(headers: &HeaderMap) -> bool {
 pub async fn cancel_job(
     State(st): State<AppState>,
     base: Base,
-    Path(id): Path<String>,
+    JobId(id): JobId,
 ) -> Result<Json<JobInfo>, ApiError> {
     st.jobs
         .cancel(&id, "cancelled by the client")

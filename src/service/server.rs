@@ -1,36 +1,48 @@
 //! The HTTP server loop: what no client may hold forever.
 //!
-//! - at most `max_connections` open connections; one more is answered 503 and closed at once,
-//!   so file descriptors stay bounded and `/healthz` keeps answering;
+//! - at most `max_connections` open connections, and at most `max_connections_per_client`
+//!   from one address, so one client cannot take them all;
+//! - beyond those, [`PROBE_CONNECTIONS`] more are reserved for the probes: such a connection
+//!   must send its headers within [`PROBE_HEADER_TIMEOUT`], and only `/healthz` and `/readyz`
+//!   are answered on it (anything else gets 503 with `Retry-After`), so a flood of connections
+//!   that never finish their headers cannot make an orchestrator restart a healthy server;
+//!   past the reserve too, a connection is answered 503 and closed at once;
 //! - a request's headers must arrive within `header_timeout`, which also bounds how long an
 //!   idle keep-alive connection is kept (hyper starts that timer whenever it waits for a
 //!   request);
-//! - a response write that makes no progress for `write_timeout` drops the connection (a
-//!   client that stops reading a large result);
+//! - a client that stops reading, or reads slower than [`super::slow::MIN_WRITE_RATE`] over
+//!   `write_timeout` of waiting, is dropped (see [`super::slow`]);
 //! - the body's own deadline is the JSON extractor's (`WHIRL_BODY_TIMEOUT`);
 //! - on shutdown the listener closes at once, connections finish their requests within
 //!   `drain`, and then the server returns whatever is left open.
 
+use std::collections::HashMap;
 use std::future::Future;
-use std::io;
-use std::pin::Pin;
+use std::net::IpAddr;
 use std::sync::Arc;
-use std::task::{Context, Poll};
 use std::time::Duration;
 
 use axum::Router;
+use axum::response::IntoResponse;
 use hyper::body::Incoming;
 use hyper_util::rt::{TokioIo, TokioTimer};
-use tokio::io::{AsyncRead, AsyncWrite, AsyncWriteExt, ReadBuf};
+use tokio::io::AsyncWriteExt;
 use tokio::net::{TcpListener, TcpStream};
 use tokio::sync::Semaphore;
-use tokio::time::Sleep;
 use tower::Service;
+
+use super::slow::WriteTimeout;
+
+/// Connections kept for the probes beyond the limits.
+pub const PROBE_CONNECTIONS: usize = 16;
+/// Time a connection in the probes' reserve has to send its headers.
+pub const PROBE_HEADER_TIMEOUT: Duration = Duration::from_secs(1);
 
 /// Connection limits of the server.
 #[derive(Debug, Clone, Copy)]
 pub struct ServerLimits {
     pub max_connections: usize,
+    pub max_connections_per_client: usize,
     pub header_timeout: Duration,
     pub write_timeout: Duration,
 }
@@ -39,103 +51,55 @@ impl ServerLimits {
     pub fn of(c: &super::Config) -> Self {
         ServerLimits {
             max_connections: c.max_connections,
+            max_connections_per_client: c.max_connections_per_client,
             header_timeout: c.header_timeout,
             write_timeout: c.write_timeout,
         }
     }
 }
 
-/// A stream whose writes fail after `timeout` without progress.
-struct WriteTimeout<T> {
-    inner: T,
-    timeout: Duration,
-    stalled: Option<Pin<Box<Sleep>>>,
+/// Open connections per client address.
+#[derive(Default)]
+struct Clients(std::sync::Mutex<HashMap<IpAddr, usize>>);
+
+/// One connection of a client, counted while it lives.
+struct ClientSlot {
+    clients: Arc<Clients>,
+    ip: IpAddr,
 }
 
-impl<T> WriteTimeout<T> {
-    fn new(inner: T, timeout: Duration) -> Self {
-        WriteTimeout {
-            inner,
-            timeout,
-            stalled: None,
+impl Clients {
+    /// A place for one more connection of `ip`, if it has fewer than `cap`.
+    fn take(self: &Arc<Self>, ip: IpAddr, cap: usize) -> Option<ClientSlot> {
+        let mut map = self.0.lock().unwrap_or_else(|e| e.into_inner());
+        let n = map.entry(ip).or_insert(0);
+        if *n >= cap {
+            return None;
         }
-    }
-
-    /// `Pending` of a write: start or check the stall timer.
-    fn stall(&mut self, cx: &mut Context<'_>) -> Poll<io::Error> {
-        let timeout = self.timeout;
-        let sleep = self
-            .stalled
-            .get_or_insert_with(|| Box::pin(tokio::time::sleep(timeout)));
-        match sleep.as_mut().poll(cx) {
-            Poll::Ready(()) => Poll::Ready(io::Error::new(
-                io::ErrorKind::TimedOut,
-                "the client stopped reading (WHIRL_WRITE_TIMEOUT)",
-            )),
-            Poll::Pending => Poll::Pending,
-        }
+        *n += 1;
+        Some(ClientSlot {
+            clients: self.clone(),
+            ip,
+        })
     }
 }
 
-impl<T: AsyncRead + Unpin> AsyncRead for WriteTimeout<T> {
-    fn poll_read(
-        mut self: Pin<&mut Self>,
-        cx: &mut Context<'_>,
-        buf: &mut ReadBuf<'_>,
-    ) -> Poll<io::Result<()>> {
-        Pin::new(&mut self.inner).poll_read(cx, buf)
+impl Drop for ClientSlot {
+    fn drop(&mut self) {
+        let mut map = self.clients.0.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(n) = map.get_mut(&self.ip) {
+            *n -= 1;
+            if *n == 0 {
+                map.remove(&self.ip);
+            }
+        }
     }
 }
 
-impl<T: AsyncWrite + Unpin> AsyncWrite for WriteTimeout<T> {
-    fn poll_write(
-        mut self: Pin<&mut Self>,
-        cx: &mut Context<'_>,
-        buf: &[u8],
-    ) -> Poll<io::Result<usize>> {
-        match Pin::new(&mut self.inner).poll_write(cx, buf) {
-            Poll::Ready(r) => {
-                self.stalled = None;
-                Poll::Ready(r)
-            }
-            Poll::Pending => self.stall(cx).map(Err),
-        }
-    }
-
-    fn poll_flush(mut self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<io::Result<()>> {
-        match Pin::new(&mut self.inner).poll_flush(cx) {
-            Poll::Ready(r) => {
-                self.stalled = None;
-                Poll::Ready(r)
-            }
-            Poll::Pending => self.stall(cx).map(Err),
-        }
-    }
-
-    fn poll_shutdown(mut self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<io::Result<()>> {
-        match Pin::new(&mut self.inner).poll_shutdown(cx) {
-            Poll::Ready(r) => Poll::Ready(r),
-            Poll::Pending => self.stall(cx).map(Err),
-        }
-    }
-
-    fn poll_write_vectored(
-        mut self: Pin<&mut Self>,
-        cx: &mut Context<'_>,
-        bufs: &[io::IoSlice<'_>],
-    ) -> Poll<io::Result<usize>> {
-        match Pin::new(&mut self.inner).poll_write_vectored(cx, bufs) {
-            Poll::Ready(r) => {
-                self.stalled = None;
-                Poll::Ready(r)
-            }
-            Poll::Pending => self.stall(cx).map(Err),
-        }
-    }
-
-    fn is_write_vectored(&self) -> bool {
-        self.inner.is_write_vectored()
-    }
+/// Whether a request is a probe (answered on a reserved connection).
+fn is_probe<B>(req: &hyper::Request<B>) -> bool {
+    matches!(req.uri().path(), "/healthz" | "/readyz")
+        && matches!(*req.method(), hyper::Method::GET | hyper::Method::HEAD)
 }
 
 /// The answer to a connection over the limit.
@@ -164,19 +128,26 @@ pub async fn serve(
     drain: Duration,
 ) {
     let connections = Arc::new(Semaphore::new(limits.max_connections));
+    let reserve = Arc::new(Semaphore::new(PROBE_CONNECTIONS));
+    let clients = Arc::new(Clients::default());
     let graceful = hyper_util::server::graceful::GracefulShutdown::new();
     let mut http = hyper::server::conn::http1::Builder::new();
     http.timer(TokioTimer::new())
         .header_read_timeout(limits.header_timeout)
         .keep_alive(true);
+    let mut probe_http = hyper::server::conn::http1::Builder::new();
+    probe_http
+        .timer(TokioTimer::new())
+        .header_read_timeout(limits.header_timeout.min(PROBE_HEADER_TIMEOUT))
+        .keep_alive(false);
     tokio::pin!(shutdown);
     loop {
         let accepted = tokio::select! {
             r = listener.accept() => r,
             () = &mut shutdown => break,
         };
-        let stream = match accepted {
-            Ok((stream, _)) => stream,
+        let (stream, peer) = match accepted {
+            Ok(a) => a,
             Err(e) => {
                 // Out of file descriptors or a transient error: back off, keep serving.
                 tracing::warn!(error = %e, "accept failed");
@@ -184,25 +155,52 @@ pub async fn serve(
                 continue;
             }
         };
-        let Ok(permit) = connections.clone().try_acquire_owned() else {
-            tracing::warn!(
-                limit = limits.max_connections,
-                "connection limit reached (WHIRL_MAX_CONNECTIONS): refused with 503"
-            );
-            tokio::spawn(refuse(stream));
-            continue;
-        };
         let _ = stream.set_nodelay(true);
         let io = TokioIo::new(WriteTimeout::new(stream, limits.write_timeout));
         let tower = app.clone();
+        let general = clients
+            .take(peer.ip(), limits.max_connections_per_client)
+            .and_then(|slot| Some((slot, connections.clone().try_acquire_owned().ok()?)));
+        if let Some(held) = general {
+            let service = hyper::service::service_fn(move |req: hyper::Request<Incoming>| {
+                tower.clone().call(req)
+            });
+            let conn = graceful.watch(http.serve_connection(io, service));
+            tokio::spawn(async move {
+                let _held = held;
+                if let Err(e) = conn.await {
+                    tracing::debug!(error = %e, "connection ended with an error");
+                }
+            });
+            continue;
+        }
+        let Ok(permit) = reserve.clone().try_acquire_owned() else {
+            tracing::warn!(
+                limit = limits.max_connections,
+                per_client = limits.max_connections_per_client,
+                client = %peer.ip(),
+                "connection limit reached (WHIRL_MAX_CONNECTIONS, \
+                 WHIRL_MAX_CONNECTIONS_PER_CLIENT): refused with 503"
+            );
+            tokio::spawn(refuse(io.into_inner().inner));
+            continue;
+        };
+        // The probes' reserve: headers at once, probes only, one request.
         let service = hyper::service::service_fn(move |req: hyper::Request<Incoming>| {
-            tower.clone().call(req)
+            let tower = tower.clone();
+            async move {
+                if is_probe(&req) {
+                    tower.clone().call(req).await
+                } else {
+                    Ok(super::ApiError::Busy.into_response())
+                }
+            }
         });
-        let conn = graceful.watch(http.serve_connection(io, service));
+        let conn = graceful.watch(probe_http.serve_connection(io, service));
         tokio::spawn(async move {
             let _permit = permit;
             if let Err(e) = conn.await {
-                tracing::debug!(error = %e, "connection ended with an error");
+                tracing::debug!(error = %e, "probe connection ended with an error");
             }
         });
     }

@@ -2,6 +2,7 @@
 //! worker pool within the request time limit (cancelled when the client goes away), and the
 //! rendered answer as the response.
 
+use axum::body::{Body, Bytes};
 use axum::http::{HeaderMap, HeaderValue, StatusCode, header};
 use axum::response::{IntoResponse, Response};
 
@@ -11,6 +12,7 @@ use super::AppState;
 use super::error::ApiError;
 use crate::analysis::control::Control;
 use crate::answer::execute;
+use crate::jobs::pool::AnswerHold;
 use crate::model::Task;
 use crate::render::{Format, Rendered, render};
 
@@ -76,7 +78,8 @@ impl Drop for CancelOnDrop {
 }
 
 /// Runs a task on the worker pool within the request time limit, and renders its output
-/// there too (large answers take time to serialise). The analysis is cancelled when the
+/// there too (large answers take time to serialise). The answer holds its size of the memory
+/// budget until the client has read it. The analysis is cancelled when the
 /// client disconnects or the limit passes.
 pub async fn respond(
     st: &AppState,
@@ -94,14 +97,11 @@ pub async fn respond(
     let c = control.clone();
     let max_bytes = st.config.max_response_bytes;
     let t0 = std::time::Instant::now();
-    let work = st.pool.run(
-        admission,
-        || {},
-        move || {
-            let out = execute(&task, &c, max_bytes)?;
-            render(&out, &formats)
-        },
-    );
+    let work = st.pool.run_answer(admission, move || {
+        let rendered = execute(&task, &c, max_bytes).and_then(|out| render(&out, &formats));
+        let bytes = rendered.as_ref().map_or(0, |r| r.body.len() as u64);
+        (rendered, bytes)
+    });
     let limit = st.config.request_time_limit;
     let result = tokio::time::timeout(limit, work).await;
     guard.armed = false;
@@ -116,8 +116,34 @@ pub async fn respond(
             );
             Err(ApiError::TimeLimit(limit))
         }
-        Ok(r) => Ok(r??.into_response()),
+        Ok(r) => {
+            let (rendered, hold) = r?;
+            Ok(held_answer(rendered?, hold))
+        }
     }
+}
+
+/// Bytes of an answer handed to the connection at a time.
+const ANSWER_CHUNK: usize = 64 << 10;
+
+/// The answer as a body of chunks that holds its share of the memory budget until the last
+/// chunk is taken or the client goes away (see `WorkerPool::run_answer`).
+fn held_answer(r: Rendered, hold: AnswerHold) -> Response {
+    let body = Bytes::from(r.body);
+    let len = body.len();
+    let chunks = futures_util::stream::unfold((body, hold), |(mut rest, hold)| async move {
+        if rest.is_empty() {
+            return None;
+        }
+        let chunk = rest.split_to(rest.len().min(ANSWER_CHUNK));
+        Some((Ok::<_, std::convert::Infallible>(chunk), (rest, hold)))
+    });
+    let mut resp = (StatusCode::OK, Body::from_stream(chunks)).into_response();
+    let h = resp.headers_mut();
+    h.insert(header::CONTENT_TYPE, HeaderValue::from_static(r.media));
+    // The stream does not say its length: the header does (no chunked encoding).
+    h.insert(header::CONTENT_LENGTH, HeaderValue::from(len));
+    resp
 }
 
 impl IntoResponse for Rendered {

@@ -89,12 +89,12 @@ impl Coefficients {
 }
 
 /// The largest step for tolerance `tol`, over the fastest spin speed `w`: the loads turn by
-/// `theta` radians a step. ETD-RK4's error on a harmonic load goes as `theta^4`; `theta = 0.2`
+/// `theta` radians a step ([`crate::model::loads::step_angle`], which the request's step
+/// estimate uses too). ETD-RK4's error on a harmonic load goes as `theta^4`; `theta = 0.2`
 /// at `tol = 1e-6` keeps the response within about `tol` of its peak (`tests/exponential.rs`:
 /// 1.05e-6 from the closed form at constant speed, 1.0e-9 at `tol = 1e-9`).
 pub fn step_bound(tol: f64, w: f64) -> f64 {
-    let theta = (0.2 * (tol / 1e-6).powf(0.25)).clamp(0.02, 0.5);
-    theta / w.max(f64::MIN_POSITIVE)
+    crate::model::loads::step_angle(tol) / w.max(f64::MIN_POSITIVE)
 }
 
 /// `V^-1 F V` for the drift of the speed, applied as `y += f (V^-1 F V) x`: whole, or as the

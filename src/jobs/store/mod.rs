@@ -22,9 +22,11 @@
 //!   (SQLite serialises writers itself.) The claim sets `running`, the worker, a lease, and
 //!   counts an attempt.
 //! - **Leases.** The worker renews its lease with the job's progress every 250 ms; the same
-//!   statement tells it when the job was cancelled elsewhere (it then matches no row). Any
-//!   replica re-queues a job whose lease ran out (its worker died) once, and fails it with that
-//!   reason the second time. Leases use the database's clock on PostgreSQL.
+//!   statement tells it when the job was cancelled elsewhere (it then matches no row); it
+//!   renews a lease that ran out as long as no replica re-queued the job. Any replica re-queues
+//!   a job whose lease ran out (its worker died) once, and fails it with that reason the second
+//!   time, but only once the store has answered it for a whole lease (see Outages). Leases use
+//!   the database's clock on PostgreSQL.
 //! - **Fencing.** Every write of a worker names the worker and requires `running`, so a worker
 //!   that lost its job (cancelled, re-queued, purged) changes nothing.
 //! - **Admission** counts the shared queue: a job is inserted only while fewer than `queue`
@@ -35,7 +37,13 @@
 //! - **Lazy connection.** The first use connects and migrates; a failure is returned (503)
 //!   and retried at the next use, so a server starts without its database and `/readyz` says
 //!   so.
+//! - **Outages** (`breaker`): once a call finds the store unreachable, calls fail at once
+//!   (503 without waiting for a connection) but for one probe every 250 ms, and the time the
+//!   store came back is kept ([`Store::trusted_for`]): a lease that ran out while nobody could
+//!   renew it is not a dead server's.
 
+mod breaker;
+mod dir;
 mod postgres;
 mod sqlite;
 
@@ -339,16 +347,35 @@ pub struct Store {
     target: Target,
     retention: Retention,
     engine: OnceCell<Engine>,
+    /// The embedded store's directory lock, held while the store lives.
+    dir_lock: std::sync::Mutex<Option<std::fs::File>>,
+    breaker: breaker::Breaker,
 }
 
-/// Runs `$call` on whichever engine is connected.
+/// Runs `$call` on whichever engine is connected,
+/// through the breaker: at once 503 while the store is unreachable, but for a probe.
 macro_rules! on_engine {
-    ($self:ident, $e:ident => $call:expr) => {
-        match $self.engine().await? {
-            Engine::Sqlite($e) => Ok($call.await?),
-            Engine::Postgres($e) => Ok($call.await?),
+    ($self:ident, $e:ident => $call:expr) => {{
+        let pass = $self.breaker.enter()?;
+        let r = match $self.engine().await {
+            Err(e) => {
+                pass.done(true);
+                return Err(e);
+            }
+            Ok(Engine::Sqlite($e)) => $call.await,
+            Ok(Engine::Postgres($e)) => $call.await,
+        };
+        match r {
+            Ok(v) => {
+                pass.done(false);
+                Ok(v)
+            }
+            Err(e) => {
+                pass.done(breaker::unreachable(&e));
+                Err(e.into())
+            }
         }
-    };
+    }};
 }
 
 impl Store {
@@ -358,7 +385,36 @@ impl Store {
             target,
             retention,
             engine: OnceCell::new(),
+            dir_lock: std::sync::Mutex::new(None),
+            breaker: breaker::Breaker::default(),
         }
+    }
+
+    /// Lets go of the data directory's lock (a server that has shut down: the next may start).
+    pub fn release_dir(&self) {
+        *self.dir_lock.lock().unwrap_or_else(|e| e.into_inner()) = None;
+    }
+
+    /// Whether the store has answered for at least `span` since it last came back from an
+    /// outage (always, if none was seen): until then, a lease that ran out may be one its
+    /// worker could not renew, not a dead server's.
+    pub fn trusted_for(&self, span: Duration) -> bool {
+        self.breaker.trusted_for(span)
+    }
+
+    /// The embedded store's directory for this server alone: created private (0700) and
+    /// locked, or an error naming the server that holds it. Taken at the first use at the
+    /// latest; the binary takes it at start, so a second server on one directory stops there.
+    /// Nothing to do for PostgreSQL.
+    pub fn claim_dir(&self) -> Result<(), StoreError> {
+        let Target::Sqlite(path) = &self.target else {
+            return Ok(());
+        };
+        let mut held = self.dir_lock.lock().unwrap_or_else(|e| e.into_inner());
+        if held.is_none() {
+            *held = Some(dir::claim(path)?);
+        }
+        Ok(())
     }
 
     /// Where the store is, for the logs (no password).
@@ -385,6 +441,8 @@ impl Store {
                 let connect = async {
                     match &self.target {
                         Target::Sqlite(dir) => {
+                            self.claim_dir()?;
+                            dir::private_files(dir, sqlite::FILE)?;
                             let m = migrator(SQLITE_MIGRATIONS).await?;
                             sqlite::Sqlite::connect(dir, self.retention, &m)
                                 .await

@@ -52,12 +52,7 @@ impl Sqlite {
         retention: Retention,
         migrator: &Migrator,
     ) -> Result<Self, StoreError> {
-        std::fs::create_dir_all(dir).map_err(|e| {
-            StoreError(format!(
-                "job store: cannot create WHIRL_DATA_DIR {}: {e}",
-                dir.display()
-            ))
-        })?;
+        // The directory, its lock and the file were made private by `dir`.
         let options = SqliteConnectOptions::new()
             .filename(dir.join(FILE))
             .create_if_missing(true)

@@ -150,6 +150,31 @@ impl TimeResponseRequest {
             max_steps: limits.max_steps,
             reduce: self.modal_reduction.unwrap_or(true),
         };
+        // The step count before any work: a fast run-up is refused here, not after minutes of
+        // integration at the step limit.
+        let fewest = spec.fewest_steps();
+        if fewest > limits.max_steps as f64 {
+            let field = if self.speed_profile.is_some() {
+                "speed_profile"
+            } else {
+                "speed"
+            };
+            bad.push(
+                field,
+                format!(
+                    "the unbalances turn through {:.3e} rad in this run: at least {:.3e} \
+                     integration steps ({} rad a step at tolerance {:e}), more than the limit \
+                     of {} (WHIRL_MAX_STEPS); use a slower speed profile, a shorter duration \
+                     or a looser tolerance",
+                    fewest * crate::model::loads::step_angle(spec.tolerance),
+                    fewest,
+                    crate::model::loads::step_angle(spec.tolerance),
+                    spec.tolerance,
+                    limits.max_steps
+                ),
+            );
+            return Err(bad);
+        }
         let size = model.size();
         let (s, n) = (size.states() as u64, size.dofs as u64);
         let values = samples as u64 * (1 + 2 * reported as u64);
@@ -162,7 +187,7 @@ impl TimeResponseRequest {
         let steps = if spec.speed.constant().is_some() {
             0.0
         } else {
-            (samples as f64).max(1e4)
+            (samples as f64).max(1e4).max(fewest)
         };
         let work = size.eigen_work() + steps * 8.0 * (s * s) as f64;
         let cost = Cost::new(size, 2, 0, extra, values).with_work(work);
