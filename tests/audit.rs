@@ -595,8 +595,10 @@ async fn level2_applies_each_source_alone_then_all_as_level_1_would() {
         } else {
             num(&l["log_decrement"][1])
         };
+        // Level I runs on a checked modal reduction, within 1e-6 of the full model
+        // (tests/level1_reduced.rs); Level II on the full model: they agree to that.
         assert!(
-            (d - want).abs() < 1e-9 * want.abs().max(1e-3),
+            (d - want).abs() < 1e-6 * want.abs().max(1e-3),
             "{name}: {d} vs {want}"
         );
     }

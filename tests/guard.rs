@@ -338,11 +338,32 @@ async fn the_data_directory_is_private_and_held_by_one_server() {
     ] {
         assert_eq!(mode(&data.join(f)), 0o600, "{f}");
     }
-    // A second server on the same directory: refused, naming this process.
+    // Another store of this process shares the directory (SQLite serves both)...
     let other = AppState::new(config);
-    let e = other.jobs.store.claim_dir().unwrap_err().to_string();
-    assert!(e.contains("in use by another whirl server"), "{e}");
-    assert!(e.contains(&std::process::id().to_string()), "{e}");
-    let (status, _, _) = call(whirl::service::router(other).0, "GET", "/readyz", &[], None).await;
-    assert_eq!(status, 503);
+    other.jobs.store.claim_dir().unwrap();
+    // ...but a second server, another process, stops at start naming this one.
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_whirl"))
+        .env("WHIRL_DATA_DIR", &data)
+        .env("HOST", "127.0.0.1")
+        .env("PORT", "0")
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = std::time::Instant::now();
+    let status = loop {
+        if let Some(s) = child.try_wait().unwrap() {
+            break s;
+        }
+        if start.elapsed() > Duration::from_secs(20) {
+            child.kill().unwrap();
+            panic!("a second server on the same directory kept running");
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    };
+    let mut err = String::new();
+    std::io::Read::read_to_string(&mut child.stderr.take().unwrap(), &mut err).unwrap();
+    assert!(!status.success());
+    assert!(err.contains("in use by another whirl server"), "{err}");
+    assert!(err.contains(&std::process::id().to_string()), "{err}");
 }

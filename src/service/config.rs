@@ -527,6 +527,6 @@ mod tests {
         ] {
             assert_eq!(vars.iter().filter(|x| **x == v).count(), 1, "{v}");
         }
-        assert_eq!(vars.len(), 29);
+        assert_eq!(vars.len(), 31);
     }
 }

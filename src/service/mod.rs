@@ -51,6 +51,8 @@ pub struct AppState {
     pub pool: Arc<pool::WorkerPool>,
     pub jobs: Arc<jobs::Jobs>,
     pub metrics: Arc<metrics::Metrics>,
+    /// Measured pace of synchronous analyses (a report past the limit is refused up front).
+    pub pace: Arc<task::Pace>,
 }
 
 impl AppState {
@@ -83,6 +85,7 @@ impl AppState {
             jobs: Arc::new(jobs::Jobs::new(store, runner, config.queue)),
             pool,
             metrics,
+            pace: Arc::default(),
             config,
         }
     }

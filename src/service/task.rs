@@ -87,6 +87,22 @@ pub async fn respond(
     formats: Vec<Format>,
 ) -> Result<Response, ApiError> {
     let name = task.name();
+    let units = task.cost.work;
+    let limit = st.config.request_time_limit;
+    // A report is refused before it starts when, at the fastest pace this server has measured
+    // for reports, its estimate would not finish in time: a job runs it instead.
+    if name == "report"
+        && let Some(estimate) = st.pace.estimate(name, units)
+        && estimate * (1.0 + 1e-9) >= limit.as_secs_f64()
+    {
+        return Err(ApiError::Unsolvable(format!(
+            "this report is estimated at {estimate:.0} s at the fastest pace this server has \
+             measured for reports, past the synchronous limit of {} s \
+             (WHIRL_REQUEST_TIME_LIMIT): submit it as a job, POST /v1/jobs with \
+             {{\"analysis\": \"report\", \"input\": <this body>}}, and poll it",
+            limit.as_secs()
+        )));
+    }
     let admission = st.pool.admit(&task.cost, task.size_field())?;
     let control = Arc::new(Control::default());
     let mut guard = CancelOnDrop {
@@ -102,13 +118,14 @@ pub async fn respond(
         let bytes = rendered.as_ref().map_or(0, |r| r.body.len() as u64);
         (rendered, bytes)
     });
-    let limit = st.config.request_time_limit;
     let result = tokio::time::timeout(limit, work).await;
     guard.armed = false;
     st.metrics.observe_analysis(name, t0.elapsed());
     match result {
         Err(_) => {
             control.cancel();
+            // It needed more than the limit: a lower bound of its pace.
+            st.pace.record(name, units, limit.as_secs_f64());
             tracing::warn!(
                 analysis = name,
                 limit_s = limit.as_secs_f64(),
@@ -118,8 +135,34 @@ pub async fn respond(
         }
         Ok(r) => {
             let (rendered, hold) = r?;
-            Ok(held_answer(rendered?, hold))
+            let rendered = rendered?;
+            st.pace.record(name, units, t0.elapsed().as_secs_f64());
+            Ok(held_answer(rendered, hold))
         }
+    }
+}
+
+/// The fastest pace this server has measured for each analysis, in seconds per unit of its
+/// work estimate (`Cost::work`, a flop count that is not calibrated to this machine). A
+/// synchronous analysis that ran past the limit counts with the limit (a lower bound).
+#[derive(Debug, Default)]
+pub struct Pace(std::sync::Mutex<std::collections::HashMap<&'static str, f64>>);
+
+impl Pace {
+    pub fn record(&self, name: &'static str, work: f64, seconds: f64) {
+        if !(work > 0.0 && work.is_finite() && seconds.is_finite() && seconds >= 0.0) {
+            return;
+        }
+        let rate = seconds / work;
+        let mut m = self.0.lock().unwrap_or_else(|e| e.into_inner());
+        let r = m.entry(name).or_insert(rate);
+        *r = r.min(rate);
+    }
+
+    /// Seconds for `work` at the fastest pace measured, if any was.
+    pub fn estimate(&self, name: &'static str, work: f64) -> Option<f64> {
+        let m = self.0.lock().unwrap_or_else(|e| e.into_inner());
+        m.get(name).map(|r| r * work).filter(|s| s.is_finite())
     }
 }
 
@@ -129,21 +172,52 @@ const ANSWER_CHUNK: usize = 64 << 10;
 /// The answer as a body of chunks that holds its share of the memory budget until the last
 /// chunk is taken or the client goes away (see `WorkerPool::run_answer`).
 fn held_answer(r: Rendered, hold: AnswerHold) -> Response {
-    let body = Bytes::from(r.body);
-    let len = body.len();
-    let chunks = futures_util::stream::unfold((body, hold), |(mut rest, hold)| async move {
-        if rest.is_empty() {
-            return None;
-        }
-        let chunk = rest.split_to(rest.len().min(ANSWER_CHUNK));
-        Some((Ok::<_, std::convert::Infallible>(chunk), (rest, hold)))
-    });
-    let mut resp = (StatusCode::OK, Body::from_stream(chunks)).into_response();
+    let body = Held {
+        rest: Bytes::from(r.body),
+        hold: Some(hold),
+    };
+    let mut resp = (StatusCode::OK, Body::new(body)).into_response();
     let h = resp.headers_mut();
     h.insert(header::CONTENT_TYPE, HeaderValue::from_static(r.media));
-    // The stream does not say its length: the header does (no chunked encoding).
-    h.insert(header::CONTENT_LENGTH, HeaderValue::from(len));
     resp
+}
+
+/// An answer handed out [`ANSWER_CHUNK`] bytes at a time, with its exact length as the size
+/// hint: the server announces it (`Content-Length`) when the body goes out as it is, and the
+/// compression layer, which changes the length, drops it (a header set here stayed, and
+/// clients that accept gzip saw the connection drop).
+struct Held {
+    rest: Bytes,
+    hold: Option<AnswerHold>,
+}
+
+impl axum::body::HttpBody for Held {
+    type Data = Bytes;
+    type Error = std::convert::Infallible;
+
+    fn poll_frame(
+        mut self: std::pin::Pin<&mut Self>,
+        _: &mut std::task::Context<'_>,
+    ) -> std::task::Poll<Option<Result<http_body::Frame<Bytes>, Self::Error>>> {
+        if self.rest.is_empty() {
+            self.hold = None;
+            return std::task::Poll::Ready(None);
+        }
+        let n = self.rest.len().min(ANSWER_CHUNK);
+        let chunk = self.rest.split_to(n);
+        if self.rest.is_empty() {
+            self.hold = None;
+        }
+        std::task::Poll::Ready(Some(Ok(http_body::Frame::data(chunk))))
+    }
+
+    fn is_end_stream(&self) -> bool {
+        self.rest.is_empty()
+    }
+
+    fn size_hint(&self) -> http_body::SizeHint {
+        http_body::SizeHint::with_exact(self.rest.len() as u64)
+    }
 }
 
 impl IntoResponse for Rendered {

@@ -1,20 +1,46 @@
 //! The embedded store's directory: private to this server's user (the directory 0700, the
 //! database files 0600), and held by one server at a time through an advisory lock
 //! (`whirl.lock`, `flock`), released by the kernel when the process ends, however it ends.
+//! The lock keeps other processes out; stores of one process on one directory share it (an
+//! embedding program or a test suite may build several on one directory, and SQLite serves
+//! them all).
 
+use std::collections::HashMap;
 use std::fs::{File, OpenOptions};
 use std::io::{Read, Seek, Write};
 use std::os::unix::fs::{DirBuilderExt, OpenOptionsExt, PermissionsExt};
-use std::path::Path;
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex, Weak};
 
 use super::StoreError;
 
 /// The lock file in the data directory.
 pub const LOCK: &str = "whirl.lock";
 
-/// Creates the directory (0700) if needed and takes its lock: an error names the process that
-/// holds it. Keep the file open for as long as the directory is used.
-pub fn claim(dir: &Path) -> Result<File, StoreError> {
+/// The locks this process holds, by canonical directory.
+static HELD: Mutex<Option<HashMap<PathBuf, Weak<File>>>> = Mutex::new(None);
+
+/// Creates the directory (0700) if needed and takes its lock, or shares this process's: an
+/// error names the process that holds it. Keep the file for as long as the directory is used.
+pub fn claim(dir: &Path) -> Result<Arc<File>, StoreError> {
+    let mut held = HELD.lock().unwrap_or_else(|e| e.into_inner());
+    let key = |d: &Path| d.canonicalize().unwrap_or_else(|_| d.to_path_buf());
+    if let Some(file) = held
+        .get_or_insert_with(HashMap::new)
+        .get(&key(dir))
+        .and_then(Weak::upgrade)
+    {
+        return Ok(file);
+    }
+    let file = Arc::new(lock(dir)?);
+    let map = held.get_or_insert_with(HashMap::new);
+    map.retain(|_, w| w.strong_count() > 0);
+    map.insert(key(dir), Arc::downgrade(&file));
+    Ok(file)
+}
+
+/// Takes the directory's lock for this process.
+fn lock(dir: &Path) -> Result<File, StoreError> {
     let fail = |what: &str, e: std::io::Error| {
         StoreError(format!(
             "job store: cannot {what} WHIRL_DATA_DIR {}: {e}",

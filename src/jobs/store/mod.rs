@@ -348,7 +348,7 @@ pub struct Store {
     retention: Retention,
     engine: OnceCell<Engine>,
     /// The embedded store's directory lock, held while the store lives.
-    dir_lock: std::sync::Mutex<Option<std::fs::File>>,
+    dir_lock: std::sync::Mutex<Option<std::sync::Arc<std::fs::File>>>,
     breaker: breaker::Breaker,
 }
 
