@@ -1,6 +1,8 @@
 //! Runs a validated task: assemble the rotor, build its damping model, analyse. The one entry
 //! point of the numerics for the service (which converts the outcome to wire types).
 
+mod audit_report;
+
 use super::AnalysisError;
 use super::audit::cases::{self, Assessment, Case};
 use super::audit::critical_map::{self, CriticalMap};
@@ -426,7 +428,7 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                 reduction: solved.reduction().cloned(),
             })
         }
-        TaskKind::Report(plan) => run_report(plan, control),
+        TaskKind::Report(plan) => audit_report::run_report(plan, control),
     }
 }
 
@@ -436,170 +438,4 @@ fn rigid_body(e: AnalysisError, rotor: &Rotor) -> RunError {
         AnalysisError::Damping(d) => damping_error(d, rotor),
         e => e.into(),
     }
-}
-
-/// A report's parts, its unbalance cases and, for each bearing set, the same.
-///
-/// Each analysis fills a share of the progress in proportion to its estimated work (the
-/// cases take [`MAX_CASES`] unbalance responses' share), so progress never goes back when
-/// the next analysis announces its own work.
-fn run_report(plan: &ReportPlan, control: &Control) -> Result<Outcome, RunError> {
-    let total = report_work(plan);
-    let mut at = 0.0;
-    let mut share = |work: f64| {
-        let from = at / total;
-        at += work;
-        (from, at / total)
-    };
-    let mut step = |task: &Task| {
-        let (from, to) = share(work(task));
-        control.part(from, to, || run(task, control))
-    };
-    let mut parts = vec![
-        step(&plan.map)?,
-        step(&plan.statics)?,
-        step(&plan.campbell)?,
-        step(&plan.unbalance)?,
-    ];
-    for m in &plan.models {
-        let level1 = step(&m.level1)?;
-        if m.primary {
-            parts.extend([parts[2].clone(), level1, parts[3].clone()]);
-        } else {
-            parts.push(step(&m.campbell)?);
-            parts.push(level1);
-            parts.push(step(&m.unbalance)?);
-        }
-    }
-    let (from, to) = share(cases_work(plan));
-    let cases = control.part(from, to, || {
-        report_cases(plan, &parts[1], &parts[2], control)
-    })?;
-    let mut sets = vec![];
-    for (_, sub) in &plan.sets {
-        let (from, to) = share(report_work(sub));
-        sets.push(control.part(from, to, || run_report(sub, control))?);
-    }
-    Ok(Outcome::Report { parts, cases, sets })
-}
-
-/// A task's estimated work for the report's progress (at least one unit: every analysis
-/// takes some time).
-fn work(task: &Task) -> f64 {
-    task.cost.work.max(1.0)
-}
-
-fn cases_work(plan: &ReportPlan) -> f64 {
-    MAX_CASES as f64 * work(&plan.unbalance)
-}
-
-/// The work of everything [`run_report`] runs.
-fn report_work(plan: &ReportPlan) -> f64 {
-    let mut total = [&plan.map, &plan.statics, &plan.campbell, &plan.unbalance]
-        .into_iter()
-        .map(work)
-        .sum::<f64>();
-    for m in &plan.models {
-        total += work(&m.level1);
-        if !m.primary {
-            total += work(&m.campbell) + work(&m.unbalance);
-        }
-    }
-    total + cases_work(plan) + plan.sets.iter().map(|(_, s)| report_work(s)).sum::<f64>()
-}
-
-/// The report's unbalance cases (see [`cases`]): one per forward critical speed of its
-/// Campbell diagram, the lowest [`MAX_CASES`], under the report's damping model.
-fn report_cases(
-    plan: &ReportPlan,
-    statics: &Outcome,
-    campbell: &Outcome,
-    control: &Control,
-) -> Result<Vec<CaseOutcome>, RunError> {
-    let (
-        Outcome::Static {
-            result, gravity, ..
-        },
-        Outcome::Campbell(c),
-        TaskKind::Unbalance {
-            model,
-            speeds,
-            range,
-            ..
-        },
-    ) = (statics, campbell, &plan.unbalance.kind)
-    else {
-        return Err(RunError::Unsolvable("report: parts out of order".into()));
-    };
-    let Rotor::Beam(rotor) = &model.rotor else {
-        return Ok(vec![]);
-    };
-    let (system, damped) = build(model)?;
-    let rpm = plan.range.1 * 30.0 / std::f64::consts::PI;
-    let journals = cases::journals(result);
-    let bearings: Vec<usize> = journals.iter().map(|j| j.node).collect();
-    let mut forward: Vec<&Critical> = c
-        .criticals
-        .iter()
-        .filter(|k| k.whirl == Whirl::Forward)
-        .collect();
-    forward.sort_by(|a, b| a.speed.total_cmp(&b.speed));
-    let mut out = vec![];
-    for (i, critical) in forward.into_iter().take(MAX_CASES).enumerate() {
-        control.check().map_err(|_| RunError::Cancelled)?;
-        let shape = cases::profile(&system, &damped, critical.speed, critical.pole, result)?;
-        let overhung = |left: bool| cases::overhung_mass(rotor, result, left);
-        let placed = placement::place(&shape.nodes, &journals, &overhung, rpm, *gravity);
-        if placed.is_empty() {
-            continue;
-        }
-        let mut nodes: Vec<usize> = placed.iter().map(|p| p.node).collect();
-        nodes.extend(&bearings);
-        nodes.extend(plan.clearances.iter().map(|c| c.0));
-        nodes.retain(|&n| cases::translation_of(&system, n).is_some());
-        nodes.sort_unstable();
-        nodes.dedup();
-        let task = Task {
-            kind: TaskKind::Unbalance {
-                model: model.clone(),
-                speeds: speeds.clone(),
-                unbalances: placed.iter().map(|p| (p.node, p.amount, p.phase)).collect(),
-                nodes: nodes.clone(),
-                range: *range,
-                reduce: true,
-            },
-            cost: plan.unbalance.cost,
-            warnings: vec![],
-        };
-        let share = |k: usize| k as f64 / MAX_CASES as f64;
-        let response = control.part(share(i), share(i + 1), || run(&task, control))?;
-        let Outcome::Unbalance {
-            response: orbits, ..
-        } = &response
-        else {
-            return Err(RunError::Unsolvable(
-                "report: a case without a response".into(),
-            ));
-        };
-        let assessment = cases::assess(
-            speeds.as_slice(),
-            &nodes,
-            orbits,
-            &bearings,
-            &plan.clearances,
-            plan.range,
-            rpm,
-        );
-        out.push(CaseOutcome {
-            case: Case {
-                mode: i + 1,
-                critical: critical.clone(),
-                unbalances: placed,
-            },
-            shape,
-            response: Box::new(response),
-            assessment,
-        });
-    }
-    Ok(out)
 }
