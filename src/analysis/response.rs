@@ -353,19 +353,6 @@ pub fn unbalance_sweep<'a>(
     let bound = speeds.iter().fold(0.0, |a: f64, b| a.max(b.abs()));
     let nonzero: Vec<f64> = speeds.iter().copied().filter(|w| *w != 0.0).collect();
     let edges = edges(&nonzero);
-    let mut model = if reduce && !edges.is_empty() {
-        Responses::checked(
-            system,
-            damping,
-            full,
-            bound,
-            &dofs,
-            &edges,
-            &probe_at(edges.clone()),
-        )?
-    } else {
-        Responses::full(system, full)
-    };
     let sweep = |model: &Responses| -> Result<Vec<Vec<Orbit>>, AnalysisError> {
         speeds
             .par_iter()
@@ -377,20 +364,73 @@ pub fn unbalance_sweep<'a>(
             })
             .collect()
     };
-    let mut response = sweep(&model)?;
-    if let Some(peak) = largest(speeds, &response)
-        && model.reduced.is_some()
-        && !edges.contains(&peak)
-    {
-        let mut points = edges.clone();
-        points.push(peak);
-        let before = model.reduction().map(|r| r.modes);
-        model = model.rechecked(damping, bound, &dofs, &[peak], &probe_at(points))?;
-        if model.reduction().map(|r| r.modes) != before {
-            response = sweep(&model)?;
+    let grid = Grid {
+        reduce,
+        bound,
+        dofs: &dofs,
+        edges,
+    };
+    grid.swept(
+        system,
+        damping,
+        full,
+        &|p| Box::new(probe_at(p)),
+        sweep,
+        |r| largest(speeds, r),
+    )
+}
+
+/// What a harmonic sweep is checked over: the largest frequency, the loaded and observed
+/// degrees of freedom, and the band's edges.
+struct Grid<'d> {
+    reduce: bool,
+    bound: f64,
+    dofs: &'d [usize],
+    edges: Vec<f64>,
+}
+
+impl Grid<'_> {
+    /// The sweep on a reduction checked at the band's edges (or on the full model), and, when
+    /// the largest response lies elsewhere, the check repeated there and the sweep again if
+    /// that widened the basis: the unbalance and frequency responses alike.
+    fn swept<'a, 'p, T>(
+        &self,
+        system: &'a RotorSystem,
+        damping: &DampingModel,
+        full: &'a DampedModel,
+        probe_at: &dyn Fn(Vec<f64>) -> Box<Probe<'p>>,
+        sweep: impl Fn(&Responses<'a>) -> Result<T, AnalysisError>,
+        peak: impl Fn(&T) -> Option<f64>,
+    ) -> Result<(T, Responses<'a>), AnalysisError> {
+        let (bound, dofs, edges) = (self.bound, self.dofs, &self.edges);
+        let mut model = if self.reduce && !edges.is_empty() {
+            Responses::checked(
+                system,
+                damping,
+                full,
+                bound,
+                dofs,
+                edges,
+                &*probe_at(edges.clone()),
+            )?
+        } else {
+            Responses::full(system, full)
+        };
+        let mut response = sweep(&model)?;
+        if let Some(at) = peak(&response)
+            && model.reduced.is_some()
+            && !edges.contains(&at)
+        {
+            let mut points = edges.clone();
+            points.push(at);
+            let before = model.reduction().map(|r| r.modes);
+            model = model.rechecked(damping, bound, dofs, &[at], &*probe_at(points))?;
+            if model.reduction().map(|r| r.modes) != before {
+                response = sweep(&model)?;
+            }
         }
+        Ok((response, model))
     }
-    Ok((response, model))
 }
 
 /// The first and last of `points` (once if they are one).
@@ -448,19 +488,6 @@ pub fn frequency_sweep<'a>(
     dofs.push(output);
     let bound = frequencies.iter().fold(0.0, |a: f64, b| a.max(b.abs()));
     let edges = edges(frequencies);
-    let mut model = if reduce && !edges.is_empty() {
-        Responses::checked(
-            system,
-            damping,
-            full,
-            bound,
-            &dofs,
-            &edges,
-            &probe_at(edges.clone()),
-        )?
-    } else {
-        Responses::full(system, full)
-    };
     let sweep = |model: &Responses| -> Result<Vec<Orbit>, AnalysisError> {
         let at = model.at(speed);
         frequencies
@@ -473,19 +500,21 @@ pub fn frequency_sweep<'a>(
             })
             .collect()
     };
-    let mut response = sweep(&model)?;
-    let per: Vec<Vec<Orbit>> = response.iter().map(|o| vec![*o]).collect();
-    if let Some(peak) = largest(frequencies, &per)
-        && model.reduced.is_some()
-        && !edges.contains(&peak)
-    {
-        let mut points = edges.clone();
-        points.push(peak);
-        let before = model.reduction().map(|r| r.modes);
-        model = model.rechecked(damping, bound, &dofs, &[peak], &probe_at(points))?;
-        if model.reduction().map(|r| r.modes) != before {
-            response = sweep(&model)?;
-        }
-    }
-    Ok((response, model))
+    let grid = Grid {
+        reduce,
+        bound,
+        dofs: &dofs,
+        edges,
+    };
+    grid.swept(
+        system,
+        damping,
+        full,
+        &|p| Box::new(probe_at(p)),
+        sweep,
+        |r| {
+            let per: Vec<Vec<Orbit>> = r.iter().map(|o| vec![*o]).collect();
+            largest(frequencies, &per)
+        },
+    )
 }
