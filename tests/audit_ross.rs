@@ -1,36 +1,21 @@
 //! The undamped critical speed map and the static deflection against ROSS 2.3.0's `run_ucs`
 //! and `run_static` (`tests/data/ross/ucs.json`, `static.json`), and against beam theory.
 
+mod common;
+use common::{beam, floats};
+
 use serde_json::{Value, json};
 use whirl::analysis::AnalysisError;
 use whirl::analysis::audit::critical_map::{CriticalMap, critical_speed_map};
 use whirl::analysis::audit::statics::{Held, StaticResult, static_deflection};
 use whirl::analysis::control::Control;
-use whirl::model::Limits;
-use whirl::model::api::RotorInput;
-use whirl::model::rotor::{BeamRotor, Rotor};
+use whirl::model::rotor::BeamRotor;
 
 const G: f64 = 9.8065;
 
 fn data(name: &str) -> Value {
     let path = format!("{}/tests/data/ross/{name}", env!("CARGO_MANIFEST_DIR"));
     serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
-}
-
-fn beam(rotor: &Value) -> BeamRotor {
-    let input: RotorInput = serde_json::from_value(rotor.clone()).unwrap();
-    match Rotor::parse(&input, &Limits::default()).unwrap() {
-        Rotor::Beam(b) => b,
-        _ => panic!("not a beam rotor"),
-    }
-}
-
-fn floats(v: &Value) -> Vec<f64> {
-    v.as_array()
-        .unwrap()
-        .iter()
-        .map(|x| x.as_f64().unwrap())
-        .collect()
 }
 
 fn map(rotor: &BeamRotor, stiffness: &[f64], modes: usize) -> CriticalMap {

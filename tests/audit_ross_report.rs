@@ -3,6 +3,9 @@
 //! where they compute the same thing they agree; where ross-report departs from API 684 the
 //! test pins down how, by dimensions.
 
+mod common;
+use common::{beam, floats};
+
 use axum::body::Body;
 use axum::http::{Request, StatusCode, header};
 use http_body_util::BodyExt;
@@ -11,9 +14,6 @@ use tower::ServiceExt;
 use whirl::analysis::audit::cases::{journals, overhung_mass};
 use whirl::analysis::audit::placement::unbalance_amount;
 use whirl::analysis::audit::statics::{Held, static_deflection};
-use whirl::model::Limits;
-use whirl::model::api::RotorInput;
-use whirl::model::rotor::{BeamRotor, Rotor};
 use whirl::service::{Config, app};
 
 /// ross-report's g (kgf).
@@ -25,22 +25,6 @@ fn data() -> Value {
         "/tests/data/ross/api_rules.json"
     );
     serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
-}
-
-fn beam(rotor: &Value) -> BeamRotor {
-    let input: RotorInput = serde_json::from_value(rotor.clone()).unwrap();
-    match Rotor::parse(&input, &Limits::default()).unwrap() {
-        Rotor::Beam(b) => b,
-        _ => panic!("not a beam rotor"),
-    }
-}
-
-fn floats(v: &Value) -> Vec<f64> {
-    v.as_array()
-        .unwrap()
-        .iter()
-        .map(|x| x.as_f64().unwrap())
-        .collect()
 }
 
 fn rel(a: f64, b: f64) -> f64 {

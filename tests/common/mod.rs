@@ -92,3 +92,22 @@ pub fn paper_nvd() -> whirl::model::damping::DampingModel {
         modes: None,
     })
 }
+
+/// The domain beam rotor of a JSON rotor known to be valid.
+pub fn beam(rotor: &serde_json::Value) -> whirl::model::rotor::BeamRotor {
+    use whirl::model::rotor::Rotor;
+    let input: whirl::model::api::RotorInput = serde_json::from_value(rotor.clone()).unwrap();
+    match Rotor::parse(&input, &whirl::model::Limits::default()).unwrap() {
+        Rotor::Beam(b) => b,
+        _ => panic!("not a beam rotor"),
+    }
+}
+
+/// A JSON array of numbers.
+pub fn floats(v: &serde_json::Value) -> Vec<f64> {
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
+}
