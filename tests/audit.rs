@@ -563,6 +563,12 @@ async fn level2_applies_each_source_alone_then_all_as_level_1_would() {
     assert_eq!(status, 200, "{v}");
     let qa = num(&v["qa"]);
     assert!((qa - 3.0 * (1e4 / speed) / (0.3 * 0.02)).abs() < 1e-9 * qa);
+    // Level I ran on a checked reduction of the 164-state shaft, checked at q0.
+    let red = &v["reduction"];
+    assert!(num(&red["states"]) < num(&red["full_states"]), "{red}");
+    assert_eq!(num(&red["full_states"]), 164.0, "{red}");
+    assert!(num(&red["max_relative_error"]) <= 1e-5, "{red}");
+    assert_eq!(num(&red["checked_cross_coupling"]), num(&v["q0"]), "{red}");
     assert!((qa - 9746.6).abs() < 0.1, "{qa}");
     let l2 = &v["level2"];
     let sources: Vec<(&str, f64)> = l2["sources"]
@@ -587,18 +593,20 @@ async fn level2_applies_each_source_alone_then_all_as_level_1_would() {
         .iter()
         .zip([0.0, 5000.0, qa, 3000.0, 5000.0 + qa + 3000.0])
     {
+        // Level II is solved on the full model: so is this Level I (Level I's checked
+        // reduction is within 1e-6 of it, tests/level1_reduced.rs).
         let at = json!({"rotor": bare, "damping": {"model": "viscous"}, "speed": speed,
-                        "node": 20, "cross_coupling": {"start": 0.0, "stop": q.max(1.0), "count": 2}});
+                        "node": 20, "cross_coupling": {"start": 0.0, "stop": q.max(1.0), "count": 2},
+                        "modal_reduction": false});
         let (_, l) = post_json("/v1/level1", &at).await;
+        assert!(l.get("reduction").is_none(), "{l}");
         let want = if q == 0.0 {
             num(&l["log_decrement"][0])
         } else {
             num(&l["log_decrement"][1])
         };
-        // Level I runs on a checked modal reduction, within 1e-6 of the full model
-        // (tests/level1_reduced.rs); Level II on the full model: they agree to that.
         assert!(
-            (d - want).abs() < 1e-6 * want.abs().max(1e-3),
+            (d - want).abs() < 1e-9 * want.abs().max(1e-3),
             "{name}: {d} vs {want}"
         );
     }

@@ -55,7 +55,7 @@ fn case(name: &str, rotor: Value, nodes: &[usize]) {
             .collect();
         let control = Control::default();
         let t = std::time::Instant::now();
-        let r = level1_reduced(&system, &model, speed, &at, &[], 11, None, &control).unwrap();
+        let r = level1_reduced(&system, &model, speed, &at, &[], 11, None, true, &control).unwrap();
         let reduced_time = t.elapsed();
         let info = r
             .reduction

@@ -399,6 +399,7 @@ pub fn level1_data() -> Level1Response {
         critical_speed_ratio: None,
         region: None,
         level2: None,
+        reduction: None,
         model: "hysteretic".into(),
         warnings: vec![],
     }

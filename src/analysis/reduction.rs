@@ -192,6 +192,35 @@ pub fn reduce(
     Ok(None)
 }
 
+/// Largest relative distance between the poles of `full` and of `reduced` at `speed`, both
+/// ways, over those in the box `|Re s|, |Im s| <= bound` (the check [`reduce`] makes, for a
+/// model that changed after it: Level I's cross-coupling). Eigenvalues only; the full model's
+/// by shift-invert Arnoldi where that is cheaper than the dense solve.
+pub fn band_error(
+    full: &DampedModel,
+    reduced: &DampedModel,
+    speed: f64,
+    bound: f64,
+) -> Result<f64, LinalgError> {
+    let criterion = Criterion::Relative(TOLERANCE);
+    let inside = |v: &[c64]| -> Vec<c64> {
+        v.iter()
+            .cloned()
+            .filter(|s| s.re.abs() <= bound && s.im.abs() <= bound)
+            .collect()
+    };
+    let (exact, approx) = rayon::join(
+        || full_compared(full, speed, bound, criterion),
+        || compared_at(reduced, speed, criterion),
+    );
+    let (exact, approx) = (exact?, approx?);
+    Ok(distance(&inside(&exact), &approx, criterion).max(distance(
+        &inside(&approx),
+        &exact,
+        criterion,
+    )))
+}
+
 /// `loads` with the coordinates where supports and nonrotating dampers act, sorted, once each:
 /// where a reduction's basis carries the static responses to unit loads.
 pub fn with_supports(system: &RotorSystem, loads: &[usize]) -> Vec<usize> {

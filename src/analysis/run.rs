@@ -78,6 +78,8 @@ pub enum Outcome {
         density: Option<f64>,
         /// API 617's Level II, with the machine's data.
         level2: Option<Vec<(level2::Source, ForwardPole)>>,
+        /// The checked reduction Level I ran on, if it did.
+        reduction: Option<level1_reduced::Level1Reduction>,
         model: &'static str,
     },
     Frequency {
@@ -344,6 +346,7 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
             qa,
             density,
             extra,
+            reduce,
         } => {
             let system = assemble(model)?;
             let placing: Vec<(usize, f64)> = at
@@ -358,10 +361,12 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                 qs,
                 21,
                 *qa,
+                *reduce,
                 control,
             )
             .map_err(|e| rigid_body(e, &model.rotor))?;
             let (qs, result, qa) = (screened.qs, screened.result, screened.qa);
+            let reduction = screened.reduction;
             let rigid = match &model.rotor {
                 Rotor::Beam(b) => Some(critical_map::rigid_first(b)?),
                 _ => None,
@@ -394,6 +399,7 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                 density: *density,
                 level2,
                 model: model.damping.name(),
+                reduction,
             })
         }
         TaskKind::Frequency {

@@ -129,8 +129,22 @@ pub fn level1(
         critical_speed_ratio: csr,
         region: screen.as_ref().and_then(|s| s.region.map(String::from)),
         level2: None,
+        reduction: None,
         model: model.into(),
         warnings: vec![],
+    }
+}
+
+pub fn level1_reduction(
+    d: &crate::analysis::audit::level1_reduced::Level1Reduction,
+) -> api::Level1ReductionInfo {
+    api::Level1ReductionInfo {
+        modes: d.modes,
+        vectors: d.vectors,
+        states: d.states,
+        full_states: d.full_states,
+        checked_cross_coupling: d.checked_q,
+        max_relative_error: d.max_relative_error,
     }
 }
 

@@ -86,10 +86,12 @@ impl Output {
                 density,
                 level2,
                 model,
+                reduction,
             } => Output::Level1({
                 let mut l =
                     convert_audit::level1(speed, &at, &qs, &result, qa, (rigid, density), model);
                 l.level2 = level2.as_deref().map(convert_audit::level2);
+                l.reduction = reduction.as_ref().map(convert_audit::level1_reduction);
                 l
             }),
             Outcome::Frequency {

@@ -209,31 +209,7 @@ impl<'a> FirstForward<'a> {
 
     /// The forward rotor poles that oscillate and are not overdamped, at `q`.
     fn candidates(&self, q: f64) -> Result<Vec<Pole>, AnalysisError> {
-        let mut s = self.system.clone();
-        if q != 0.0 {
-            for (at, node, w) in &self.at {
-                let k = Matrix2 {
-                    xx: 0.0,
-                    xy: w * q,
-                    yx: -w * q,
-                    yy: 0.0,
-                };
-                s.supports.push(PlacedSupport {
-                    at: at.clone(),
-                    support: GeneralSupport {
-                        index: usize::MAX,
-                        seal: false,
-                        node: *node,
-                        link: None,
-                        law: Law::Constant(Coefficients {
-                            k,
-                            ..Coefficients::default()
-                        }),
-                        loss_factor: 0.0,
-                    },
-                });
-            }
-        }
+        let s = coupled(self.system, &self.at, q);
         let model = DampedModel::build(&s, self.damping)?;
         let set = poles_at(&model, self.speed)?;
         Ok(set
@@ -242,6 +218,37 @@ impl<'a> FirstForward<'a> {
             .filter(|p| p.whirl == Whirl::Forward && p.oscillates() && !overdamped(p.s))
             .collect())
     }
+}
+
+/// `system` with the total cross-coupling `q` shared as `at` says: `(placement, node,
+/// share)`, each share a support `kxy = w q`, `kyx = -w q`.
+pub fn coupled(system: &RotorSystem, at: &[(Placement, usize, f64)], q: f64) -> RotorSystem {
+    let mut s = system.clone();
+    if q != 0.0 {
+        for (at, node, w) in at {
+            let k = Matrix2 {
+                xx: 0.0,
+                xy: w * q,
+                yx: -w * q,
+                yy: 0.0,
+            };
+            s.supports.push(PlacedSupport {
+                at: at.clone(),
+                support: GeneralSupport {
+                    index: usize::MAX,
+                    seal: false,
+                    node: *node,
+                    link: None,
+                    law: Law::Constant(Coefficients {
+                        k,
+                        ..Coefficients::default()
+                    }),
+                    loss_factor: 0.0,
+                },
+            });
+        }
+    }
+    s
 }
 
 /// `count` values from 0 to twice `q0` (found by growing `q` by 4 from a millionth of the

@@ -12,12 +12,13 @@
 //! The reduction keeps every pole within twice the first forward mode's modulus to 1e-6
 //! relative at the screen's speed; the result is checked against the full model at the
 //! largest `q` solved (`q0` when found, else the end of the curve), where the cross-coupling
-//! moves the pole furthest, and the full model is solved instead if the first forward mode
-//! differs there by more than [`CHECK`] relative.
+//! moves the poles furthest: every pole in that band, reduced against full and the other way
+//! round (eigenvalues only, so one full solve without shapes), and the full model is solved
+//! instead if any differs there by more than [`CHECK`] relative.
 //!
 //! [`reduction::reduce`]: crate::analysis::reduction::reduce
 
-use super::level1::{self, FirstForward, Level1, Placing, auto_range_of, level1_of};
+use super::level1::{self, FirstForward, Level1, Placing, auto_range_of, coupled, level1_of};
 use crate::analysis::AnalysisError;
 use crate::analysis::control::Control;
 use crate::analysis::reduction::{self, Criterion, TOLERANCE};
@@ -25,8 +26,8 @@ use crate::damping::DampedModel;
 use crate::model::damping::DampingModel;
 use crate::system::{Placement, RotorSystem};
 
-/// Largest relative difference of the first forward pole, reduced against full, accepted at
-/// the check.
+/// Largest relative difference of a pole in the band, reduced against full, accepted at the
+/// check.
 pub const CHECK: f64 = 1e-5;
 
 /// How a Level I screen was reduced.
@@ -39,7 +40,7 @@ pub struct Level1Reduction {
     pub full_states: usize,
     /// The cross-coupling at which the first forward pole was compared with the full model's.
     pub checked_q: f64,
-    /// `|s_reduced - s_full| / |s_full|` there.
+    /// Largest `|s_reduced - s_full| / |s_full|` over the poles in the band there.
     pub max_relative_error: f64,
 }
 
@@ -52,7 +53,8 @@ pub struct Screened {
     pub reduction: Option<Level1Reduction>,
 }
 
-/// Level I of `system` on a checked reduction, or on the full model where none passes.
+/// Level I of `system` on a checked reduction, or on the full model where none passes (or
+/// where `reduce` is false).
 #[allow(clippy::too_many_arguments)]
 pub fn level1_reduced(
     system: &RotorSystem,
@@ -62,9 +64,9 @@ pub fn level1_reduced(
     qs: &[f64],
     count: usize,
     qa: Option<f64>,
+    reduce: bool,
     control: &Control,
 ) -> Result<Screened, AnalysisError> {
-    let full = DampedModel::build(system, damping)?;
     let dofs: Vec<usize> = at.iter().map(|&(d, _)| d).collect();
     let scale = level1::stiffness_scale(system);
     let run = |first: &FirstForward| -> Result<(Vec<f64>, Level1, _), AnalysisError> {
@@ -80,6 +82,24 @@ pub fn level1_reduced(
         };
         Ok((qs, result, qa))
     };
+    let whole = || -> Result<Screened, AnalysisError> {
+        let first = FirstForward::new(system, damping, speed, at)?;
+        let (qs, result, qa) = run(&first)?;
+        Ok(Screened {
+            qs,
+            result,
+            qa,
+            reduction: None,
+        })
+    };
+    if !reduce {
+        return whole();
+    }
+    let full = DampedModel::build(system, damping)?;
+    let whole_at: Vec<(Placement, usize, f64)> = at
+        .iter()
+        .map(|&(d, w)| (Placement::Dof(d), system.dofs[d].node, w))
+        .collect();
     // The band: from the second mode at rest (the first forward mode is rarely above it),
     // widened to twice the first forward mode's modulus if it is not.
     let mut bound = full
@@ -112,7 +132,7 @@ pub fn level1_reduced(
                 (Placement::Shape(row), system.dofs[d].node, w)
             })
             .collect();
-        let first = FirstForward::placed(&red.system, damping, speed, placed)?;
+        let first = FirstForward::placed(&red.system, damping, speed, placed.clone())?;
         let modulus = first.reference_modulus();
         if let Some(m) = modulus
             && 1.5 * m > bound
@@ -121,18 +141,13 @@ pub fn level1_reduced(
             continue;
         }
         let (qs, result, qa) = run(&first)?;
-        // The check: the largest cross-coupling solved.
+        // The check: every pole in the band, reduced against full, at the largest
+        // cross-coupling solved, where it has moved the poles furthest from where the
+        // reduction was checked. Eigenvalues only: one full solve, no shapes.
         let q = result.q0.unwrap_or(qs.iter().copied().fold(0.0, f64::max));
-        let whole = FirstForward::new(system, damping, speed, at)?;
-        let (exact, approx) = (whole.at(q)?, first.at(q)?);
-        let error = match (exact, approx) {
-            (Some(e), Some(a)) => {
-                let d = ((e.0 - a.0).powi(2) + (e.1 - a.1).powi(2)).sqrt();
-                d / (e.0 * e.0 + e.1 * e.1).sqrt().max(f64::MIN_POSITIVE)
-            }
-            (None, None) => 0.0,
-            _ => f64::INFINITY,
-        };
+        let exact = DampedModel::build(&coupled(system, &whole_at, q), damping)?;
+        let approx = DampedModel::build(&coupled(&red.system, &placed, q), damping)?;
+        let error = reduction::band_error(&exact, &approx, speed, bound)?;
         if error > CHECK {
             break;
         }
@@ -150,12 +165,5 @@ pub fn level1_reduced(
             }),
         });
     }
-    let first = FirstForward::new(system, damping, speed, at)?;
-    let (qs, result, qa) = run(&first)?;
-    Ok(Screened {
-        qs,
-        result,
-        qa,
-        reduction: None,
-    })
+    whole()
 }

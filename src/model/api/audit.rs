@@ -292,6 +292,33 @@ pub struct Level1Request {
     /// replace `node`/`nodes` for the distribution of q.
     #[serde(default)]
     pub machine: Option<MachineInput>,
+    /// Whether Level I may be solved on a checked modal reduction (default true): the
+    /// answer's `reduction` says what was solved. Level II is always solved on the full model.
+    #[serde(default)]
+    pub modal_reduction: Option<bool>,
+}
+
+/// How a Level I screen was reduced: the modal basis holds the lowest modes, their static
+/// corrections and the static responses at the cross-coupling's translations, so the
+/// cross-coupling is a rank-two update of the reduced stiffness.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct Level1ReductionInfo {
+    /// Undamped modes retained.
+    pub modes: usize,
+    /// Size of the basis.
+    pub vectors: usize,
+    /// State size of each reduced eigenproblem.
+    pub states: usize,
+    /// State size of the full model.
+    pub full_states: usize,
+    /// The total cross-coupling at which the poles were compared with the full model's (q0
+    /// when found, else the largest q solved), N/m.
+    pub checked_cross_coupling: f64,
+    /// Largest `|s_reduced - s_full| / |s_full|` there over the poles with `|Re s|` and
+    /// `|Im s|` within the band checked (at least the second natural frequency at rest and
+    /// 1.5 times the first forward mode's modulus), both ways (at most 1e-5, else the full
+    /// model is solved).
+    pub max_relative_error: f64,
 }
 
 /// Answer of `POST /v1/level1`.
@@ -353,6 +380,10 @@ pub struct Level1Response {
     /// bearings alone, with each destabilising source alone, and with all together.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub level2: Option<Level2Response>,
+    /// The checked modal reduction Level I was solved on; absent when the full model was
+    /// (`"modal_reduction": false`, or no reduction passed its check).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reduction: Option<Level1ReductionInfo>,
     pub model: String,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub warnings: Vec<String>,

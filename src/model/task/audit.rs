@@ -324,6 +324,7 @@ impl Level1Request {
                 qa,
                 density,
                 extra,
+                reduce: self.modal_reduction.unwrap_or(true),
             },
             cost: sweep_cost(size, 1, limits, false, values)
                 .with_work(size.eigen_work() * solves as f64),

@@ -240,6 +240,8 @@ pub enum TaskKind {
         density: Option<f64>,
         /// Level II's further cross-coupling, `(node, q N/m)`; Level II runs with `qa`.
         extra: Vec<(usize, f64)>,
+        /// Whether Level I may run on a checked modal reduction.
+        reduce: bool,
     },
     Frequency {
         model: Model,

@@ -212,6 +212,7 @@ impl ReportRequest {
                 },
                 cross_coupling: self.cross_coupling.clone(),
                 machine: self.machine.clone(),
+                modal_reduction: None,
             }
             .parse(limits)
             .map_err(|mut e| {
