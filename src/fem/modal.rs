@@ -141,43 +141,10 @@ impl ModalBasis {
         // of a stiff shaft that product cancels to eps * w_max^2 / w^2 relative (5e-6 on the
         // unreduced compressor), while K phi = w^2 M phi and K (K^-1 f) = f are exact.
         let kept_k = m * &kept.phi;
-        let mut basis: Vec<Vec<f64>> = (0..kept.len())
-            .map(|j| (0..n).map(|i| kept.phi[(i, j)]).collect())
-            .collect();
-        let mut k_basis: Vec<Vec<f64>> = (0..kept.len())
-            .map(|j| {
-                let w2 = kept.omega[j] * kept.omega[j];
-                (0..n).map(|i| w2 * kept_k[(i, j)]).collect()
-            })
-            .collect();
-        for j in 0..x.ncols() {
-            let mut v: Vec<f64> = (0..n).map(|i| x[(i, j)]).collect();
-            let mut kv: Vec<f64> = (0..n).map(|i| f[(i, j)]).collect();
-            let start = mass_norm(m, &v);
-            if start == 0.0 || !start.is_finite() {
-                continue;
-            }
-            // Twice is enough (Kahan): M-orthogonal to every vector kept so far.
-            for _twice in 0..2 {
-                let mv: Vec<f64> = (0..n)
-                    .map(|i| (0..n).map(|c| m[(i, c)] * v[c]).sum())
-                    .collect();
-                for (b, kb) in basis.iter().zip(&k_basis) {
-                    let c: f64 = (0..n).map(|i| b[i] * mv[i]).sum();
-                    for i in 0..n {
-                        v[i] -= c * b[i];
-                        kv[i] -= c * kb[i];
-                    }
-                }
-            }
-            let norm = mass_norm(m, &v);
-            if norm > 1e-8 * start {
-                basis.push(v.iter().map(|x| x / norm).collect());
-                k_basis.push(kv.iter().map(|x| x / norm).collect());
-            }
-        }
-        let v = RMat::from_fn(n, basis.len(), |i, j| basis[j][i]);
-        let kv = RMat::from_fn(n, basis.len(), |i, j| k_basis[j][i]);
+        let kept_kphi = RMat::from_fn(n, kept.len(), |i, j| {
+            kept.omega[j] * kept.omega[j] * kept_k[(i, j)]
+        });
+        let (v, kv) = linalg::m_orthonormal_extend(m, &kept.phi, &kept_kphi, &x, &f);
         let kr = v.transpose() * &kv;
         let kr = RMat::from_fn(kr.nrows(), kr.ncols(), |i, j| {
             0.5 * (kr[(i, j)] + kr[(j, i)])
@@ -242,16 +209,6 @@ fn pencil(system: &RotorSystem) -> (RMat, RMat) {
         let (ks, ms) = system.supports_at_rest();
         (&system.stiffness() + &ks, &system.mass + &ms)
     }
-}
-
-/// `sqrt(v^T M v)`.
-fn mass_norm(m: &RMat, v: &[f64]) -> f64 {
-    let n = v.len();
-    (0..n)
-        .map(|i| v[i] * (0..n).map(|k| m[(i, k)] * v[k]).sum::<f64>())
-        .sum::<f64>()
-        .max(0.0)
-        .sqrt()
 }
 
 impl ModalBasis {

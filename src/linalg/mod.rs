@@ -10,6 +10,9 @@
 //! spin speeds instead, which is faster on few cores than parallelising one small problem.
 
 pub mod arnoldi;
+mod gram;
+
+pub use gram::m_orthonormal_extend;
 
 use faer::linalg::solvers::Solve;
 use faer::{Par, Side};
