@@ -158,6 +158,22 @@ fn cross_coupled_anisotropic_rotor_under_every_damping_model() {
     }
 }
 
+/// Outputs at every node: their static responses alone would keep any basis from halving
+/// the state; the sweep is reduced on the loads' and supports' corrections instead, and
+/// still equals the full model at every node and speed.
+#[test]
+fn outputs_at_every_node_are_read_off_the_reduction() {
+    let rotor = heldout(6, 0.002);
+    let system = assemble(rotor.clone());
+    let every: Vec<usize> = (0..)
+        .take_while(|&n| system.translation(n).is_some())
+        .collect();
+    assert_eq!(every.len(), 59);
+    for d in models() {
+        unbalance_case("rotor_6 at every node", rotor.clone(), d, 12, &every);
+    }
+}
+
 #[test]
 fn tabulated_supports_under_every_damping_model() {
     for d in models() {

@@ -13,7 +13,9 @@
 //! after the sweep again at its largest response (where a pole's error is amplified most);
 //! the band widens by half until the largest difference is within [`TOLERANCE`] of the largest
 //! response compared, or the full model is solved when no basis at least halves the state.
-//! What was solved is reported ([`ResponseReduction`]).
+//! What was solved is reported ([`ResponseReduction`]). Where the outputs' static responses
+//! keep every basis from halving the state (outputs at every node), the outputs are read off a
+//! basis corrected at the loads and supports only, under the same check.
 
 use super::AnalysisError;
 use super::audit::frequency::{Harmonic, Orbit, Steady};
@@ -368,6 +370,7 @@ pub fn unbalance_sweep<'a>(
         reduce,
         bound,
         dofs: &dofs,
+        forces: unbalances.len(),
         edges,
     };
     grid.swept(
@@ -381,11 +384,12 @@ pub fn unbalance_sweep<'a>(
 }
 
 /// What a harmonic sweep is checked over: the largest frequency, the loaded and observed
-/// degrees of freedom, and the band's edges.
+/// degrees of freedom (the first `forces` of `dofs` loaded), and the band's edges.
 struct Grid<'d> {
     reduce: bool,
     bound: f64,
     dofs: &'d [usize],
+    forces: usize,
     edges: Vec<f64>,
 }
 
@@ -402,17 +406,23 @@ impl Grid<'_> {
         sweep: impl Fn(&Responses<'a>) -> Result<T, AnalysisError>,
         peak: impl Fn(&T) -> Option<f64>,
     ) -> Result<(T, Responses<'a>), AnalysisError> {
-        let (bound, dofs, edges) = (self.bound, self.dofs, &self.edges);
+        let (bound, mut dofs, edges) = (self.bound, self.dofs, &self.edges);
         let mut model = if self.reduce && !edges.is_empty() {
-            Responses::checked(
-                system,
-                damping,
-                full,
-                bound,
-                dofs,
-                edges,
-                &*probe_at(edges.clone()),
-            )?
+            let probe = probe_at(edges.clone());
+            let mut model = Responses::checked(system, damping, full, bound, dofs, edges, &*probe)?;
+            // The outputs' static responses can keep every basis from halving the state
+            // (outputs at every node): the outputs are then read off a basis corrected at the
+            // loads and supports only (an output error of first order in the basis error, not
+            // second), under the same check.
+            let forces = &dofs[..self.forces.min(dofs.len())];
+            if model.reduced.is_none() && forces.len() < dofs.len() {
+                let fewer =
+                    Responses::checked(system, damping, full, bound, forces, edges, &*probe)?;
+                if fewer.reduced.is_some() {
+                    (model, dofs) = (fewer, forces);
+                }
+            }
+            model
         } else {
             Responses::full(system, full)
         };
@@ -504,6 +514,7 @@ pub fn frequency_sweep<'a>(
         reduce,
         bound,
         dofs: &dofs,
+        forces: dofs.len() - 1,
         edges,
     };
     grid.swept(
