@@ -400,7 +400,7 @@ impl Runner {
                 took_ms = t0.elapsed().as_millis() as u64,
                 "the job store was slow to answer: expired leases are not judged for a lease"
             );
-            self.store.doubt();
+            self.store.health().doubt();
             return false;
         }
         r.is_ok()
@@ -419,7 +419,7 @@ impl Runner {
             lease.as_secs_f64()
         ));
         loop {
-            if self.store.unreachable() {
+            if self.store.health().down() {
                 // The probe: the only call that tries the store until it answers.
                 tokio::time::sleep(PROBE_EVERY).await;
                 let _ = self.store.ping().await;
@@ -429,7 +429,7 @@ impl Runner {
             if !self.store.connected() {
                 continue;
             }
-            if !self.store.trusted_for(lease) {
+            if !self.store.health().trusted_for(lease) {
                 // Down, or back for less than a lease: expired leases are not deaths yet.
                 self.ping_promptly(prompt).await;
                 continue;

@@ -40,8 +40,8 @@
 //! - **Outages** (`breaker`): once a call finds the store unreachable, calls fail at once
 //!   (503 without waiting for a connection); only the server's own pings ([`Store::ping`], the
 //!   runner's upkeep every 250 ms) try the store until it answers, and the time the store came
-//!   back is kept ([`Store::trusted_for`]): a lease that ran out while nobody could renew it
-//!   is not a dead server's.
+//!   back is kept ([`Store::health`]): a lease that ran out while nobody could renew it is not
+//!   a dead server's.
 
 mod breaker;
 mod dir;
@@ -401,11 +401,10 @@ impl Store {
         *self.dir_lock.lock().unwrap_or_else(|e| e.into_inner()) = None;
     }
 
-    /// Whether the store has answered for at least `span` since it last came back from an
-    /// outage (always, if none was seen): until then, a lease that ran out may be one its
-    /// worker could not renew, not a dead server's.
-    pub fn trusted_for(&self, span: Duration) -> bool {
-        self.breaker.trusted_for(span)
+    /// What this server knows of the store's health: whether it is unreachable, and whether
+    /// it has answered long enough to judge leases by ([`breaker::Breaker::trusted_for`]).
+    pub fn health(&self) -> &breaker::Breaker {
+        &self.breaker
     }
 
     /// The embedded store's directory for this server alone: created private (0700) and
@@ -478,16 +477,6 @@ impl Store {
     /// unreachable, this is the probe that tries it (every [`PROBE_EVERY`] at most).
     pub async fn ping(&self) -> Result<(), StoreError> {
         on_engine!(self, true, e => e.ping())
-    }
-
-    /// The store was slow to answer: not [`Store::trusted_for`] a span from now.
-    pub fn doubt(&self) {
-        self.breaker.doubt();
-    }
-
-    /// Whether the store is unreachable, as far as this server knows (its last call failed).
-    pub fn unreachable(&self) -> bool {
-        self.breaker.down()
     }
 
     /// Inserts a queued job unless `queue` jobs already wait, or its idempotency key names a
