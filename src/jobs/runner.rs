@@ -21,11 +21,17 @@
 //!   the lease when it can again; only if another replica re-queued the job meanwhile (the
 //!   renewal then matches no row) does it stop. A worker that cannot record an end retries
 //!   until the store answers (for a lease at most once the server is shutting down).
+//! - **Probing the store.** While the store is unreachable, the maintenance loop pings it
+//!   every [`PROBE_EVERY`]: the only call let through until it answers (clients' calls and the
+//!   workers' heartbeats fail at once meanwhile).
 //! - **Maintenance**, every quarter lease (between 0.25 and 2 s): jobs whose lease ran out are
 //!   re-queued once and failed the second time (any replica does it; the update is atomic),
 //!   but only by a replica that has reached the store for a whole lease since it last found it
-//!   unreachable: after an outage the workers that kept their jobs renew them first, so an
-//!   expiry is a server that is gone, not an outage. Retention is applied too.
+//!   unreachable, and right after a ping answered promptly (a quarter lease, 0.25 to 1 s): after
+//!   an outage the workers that kept their jobs renew them first, so an expiry is a server that
+//!   is gone, not an outage. An outage too short for any call to fail (the pool waits 3 s for a
+//!   connection) shows as a slow ping, and counts as one: no reap for a lease after it, and none
+//!   sent into it to run when it ends. Retention is applied too.
 //! - **Shutdown.** No more claims or submissions. Running jobs get the grace, and what is left
 //!   is handed back to the queue, each logged, to run again from the start on another replica
 //!   or after the restart. Queued jobs stay queued.
@@ -39,7 +45,7 @@ use tokio::sync::Notify;
 
 use super::metrics::Metrics;
 use super::pool::{Lane, Reserved, WorkerPool, release_free_memory};
-use super::store::{Claimed, Ending, Room, Store};
+use super::store::{Claimed, Ending, PROBE_EVERY, Room, Store};
 use super::stored::{Stored, parse_stored, stopped};
 use crate::analysis::control::Control;
 use crate::answer::{ApiError, execute};
@@ -381,10 +387,30 @@ impl Runner {
         }
     }
 
+    /// Pings the store: whether it answered within `prompt`. An outage shorter than the
+    /// pool's wait for a connection fails no call: a reap sent into it would run when the store
+    /// is back, before the workers could renew the leases that ran out meanwhile. A ping that
+    /// took longer is such an outage (or a store too busy to judge leases by): the store is
+    /// not trusted for a lease from its answer on.
+    async fn ping_promptly(&self, prompt: Duration) -> bool {
+        let t0 = Instant::now();
+        let r = self.store.ping().await;
+        if t0.elapsed() > prompt {
+            tracing::debug!(
+                took_ms = t0.elapsed().as_millis() as u64,
+                "the job store was slow to answer: expired leases are not judged for a lease"
+            );
+            self.store.health().doubt();
+            return false;
+        }
+        r.is_ok()
+    }
+
     /// Re-queues jobs whose worker died, and applies retention, forever.
     async fn maintain(self: Arc<Self>) {
         let lease = self.config.job_lease;
         let every = (lease / 4).clamp(Duration::from_millis(250), Duration::from_secs(2));
+        let prompt = (lease / 4).clamp(HEARTBEAT, Duration::from_secs(1));
         let purge_every = Duration::from_secs(5);
         let mut purged = Instant::now();
         let reason = stopped(&format!(
@@ -393,13 +419,23 @@ impl Runner {
             lease.as_secs_f64()
         ));
         loop {
+            if self.store.health().down() {
+                // The probe: the only call that tries the store until it answers.
+                tokio::time::sleep(PROBE_EVERY).await;
+                let _ = self.store.ping().await;
+                continue;
+            }
             tokio::time::sleep(every).await;
             if !self.store.connected() {
                 continue;
             }
-            if !self.store.trusted_for(lease) {
+            if !self.store.health().trusted_for(lease) {
                 // Down, or back for less than a lease: expired leases are not deaths yet.
-                let _ = self.store.ping().await;
+                self.ping_promptly(prompt).await;
+                continue;
+            }
+            // A prompt answer first: see `ping_promptly`.
+            if !self.ping_promptly(prompt).await {
                 continue;
             }
             match self.store.reap(&reason).await {

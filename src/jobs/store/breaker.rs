@@ -1,10 +1,18 @@
 //! Failing fast while the store is unreachable, and knowing when it came back.
 //!
 //! After a call finds the store unreachable, calls fail at once (no connection attempt, no
-//! wait for the pool's timeout) except one probe every [`RETRY`]; the first call that gets an
-//! answer closes the breaker. The time the store came back is kept: leases that ran out during
-//! an outage say nothing about their servers until the workers have had a lease to renew them
-//! ([`Breaker::trusted_for`]).
+//! wait for the pool's timeout). Only probes go through, one at a time and one every
+//! [`RETRY`] at most: the server's own pings (the runner's upkeep), never a client's request,
+//! which would otherwise wait for the pool's connection timeout (3 s) whenever it happened to
+//! be the one let through. The first probe that gets an answer closes the breaker. The time
+//! the store came back is kept: leases that ran out during an outage say nothing about their
+//! servers until the workers have had a lease to renew them ([`Breaker::trusted_for`]).
+//!
+//! Calls already under way when the store goes away are not cut short: they find out when the
+//! pool gives up on a connection (3 s), and the first to fail opens the breaker. An outage
+//! shorter than that makes no call fail (they all wait, and go on when the store is back);
+//! the runner's upkeep notices it as a ping that took too long ([`Breaker::doubt`]), and the
+//! store is not trusted for a lease from then either.
 
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
@@ -22,7 +30,7 @@ struct State {
     retry_at: Option<Instant>,
     /// A probe is under way.
     probing: bool,
-    /// When the store last came back after an outage.
+    /// When the store last came back after an outage (or was last slow to answer).
     up_since: Option<Instant>,
 }
 
@@ -41,8 +49,9 @@ impl Breaker {
         self.0.lock().unwrap_or_else(|e| e.into_inner())
     }
 
-    /// A call may go to the store, or fails at once while the store is unreachable.
-    pub fn enter(&self) -> Result<Pass<'_>, StoreError> {
+    /// A call may go to the store, or fails at once while the store is unreachable; but for
+    /// a `probe` when one is due.
+    pub fn enter(&self, probe: bool) -> Result<Pass<'_>, StoreError> {
         let mut s = self.state();
         let Some(since) = s.down_since else {
             return Ok(Pass {
@@ -51,7 +60,7 @@ impl Breaker {
                 done: false,
             });
         };
-        if s.probing || s.retry_at.is_some_and(|t| Instant::now() < t) {
+        if !probe || s.probing || s.retry_at.is_some_and(|t| Instant::now() < t) {
             return Err(StoreError(format!(
                 "job store unreachable for {:.1} s (tried again every {} ms)",
                 since.elapsed().as_secs_f64(),
@@ -73,9 +82,14 @@ impl Breaker {
         s.down_since.is_none() && s.up_since.is_none_or(|t| t.elapsed() >= span)
     }
 
+    /// The store was slow to answer (an outage too short for calls to fail, since the pool
+    /// waits for a connection): not trusted for a while, as if it had just come back.
+    pub fn doubt(&self) {
+        self.state().up_since = Some(Instant::now());
+    }
+
     /// Whether the store is unreachable now, as far as this process knows.
-    #[cfg(test)]
-    fn down(&self) -> bool {
+    pub fn down(&self) -> bool {
         self.state().down_since.is_some()
     }
 }
@@ -133,20 +147,28 @@ mod tests {
     fn fails_fast_then_probes_then_waits_a_lease() {
         let b = Breaker::default();
         assert!(b.trusted_for(Duration::from_secs(1)));
-        b.enter().unwrap().done(true);
+        b.enter(false).unwrap().done(true);
         assert!(b.down());
         // At once after the failure: no call goes through.
         let t0 = Instant::now();
-        assert!(b.enter().is_err());
+        assert!(b.enter(false).is_err());
+        assert!(b.enter(true).is_err());
         assert!(t0.elapsed() < Duration::from_millis(5));
         std::thread::sleep(RETRY);
-        let probe = b.enter().unwrap();
-        assert!(b.enter().is_err(), "one probe at a time");
+        // A client's call never probes; the server's probe goes, one at a time.
+        assert!(b.enter(false).is_err());
+        let probe = b.enter(true).unwrap();
+        assert!(b.enter(true).is_err(), "one probe at a time");
+        assert!(b.enter(false).is_err());
         probe.done(false);
         assert!(!b.down());
-        assert!(b.enter().is_ok());
+        assert!(b.enter(false).is_ok());
         assert!(!b.trusted_for(Duration::from_millis(200)));
         std::thread::sleep(Duration::from_millis(200));
         assert!(b.trusted_for(Duration::from_millis(200)));
+        // Slow to answer: not trusted again for a while.
+        b.doubt();
+        assert!(!b.trusted_for(Duration::from_millis(200)));
+        assert!(!b.down(), "still reachable");
     }
 }

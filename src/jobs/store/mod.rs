@@ -38,12 +38,15 @@
 //!   and retried at the next use, so a server starts without its database and `/readyz` says
 //!   so.
 //! - **Outages** (`breaker`): once a call finds the store unreachable, calls fail at once
-//!   (503 without waiting for a connection) but for one probe every 250 ms, and the time the
-//!   store came back is kept ([`Store::trusted_for`]): a lease that ran out while nobody could
-//!   renew it is not a dead server's.
+//!   (503 without waiting for a connection); only the server's own pings ([`Store::ping`], the
+//!   runner's upkeep every 250 ms) try the store until it answers, and the time the store came
+//!   back is kept ([`Store::health`]): a lease that ran out while nobody could renew it is not
+//!   a dead server's.
 
 mod breaker;
 mod dir;
+
+pub use breaker::RETRY as PROBE_EVERY;
 mod postgres;
 mod sqlite;
 
@@ -353,10 +356,13 @@ pub struct Store {
 }
 
 /// Runs `$call` on whichever engine is connected,
-/// through the breaker: at once 503 while the store is unreachable, but for a probe.
+/// through the breaker: at once 503 while the store is unreachable, but for a due probe.
 macro_rules! on_engine {
-    ($self:ident, $e:ident => $call:expr) => {{
-        let pass = $self.breaker.enter()?;
+    ($self:ident, $e:ident => $call:expr) => {
+        on_engine!($self, false, $e => $call)
+    };
+    ($self:ident, $probe:expr, $e:ident => $call:expr) => {{
+        let pass = $self.breaker.enter($probe)?;
         let r = match $self.engine().await {
             Err(e) => {
                 pass.done(true);
@@ -395,11 +401,10 @@ impl Store {
         *self.dir_lock.lock().unwrap_or_else(|e| e.into_inner()) = None;
     }
 
-    /// Whether the store has answered for at least `span` since it last came back from an
-    /// outage (always, if none was seen): until then, a lease that ran out may be one its
-    /// worker could not renew, not a dead server's.
-    pub fn trusted_for(&self, span: Duration) -> bool {
-        self.breaker.trusted_for(span)
+    /// What this server knows of the store's health: whether it is unreachable, and whether
+    /// it has answered long enough to judge leases by ([`breaker::Breaker::trusted_for`]).
+    pub fn health(&self) -> &breaker::Breaker {
+        &self.breaker
     }
 
     /// The embedded store's directory for this server alone: created private (0700) and
@@ -468,9 +473,10 @@ impl Store {
             .await
     }
 
-    /// Connects (and migrates) now; `Ok` when the store answers.
+    /// Connects (and migrates) now; `Ok` when the store answers. While the store is
+    /// unreachable, this is the probe that tries it (every [`PROBE_EVERY`] at most).
     pub async fn ping(&self) -> Result<(), StoreError> {
-        on_engine!(self, e => e.ping())
+        on_engine!(self, true, e => e.ping())
     }
 
     /// Inserts a queued job unless `queue` jobs already wait, or its idempotency key names a
