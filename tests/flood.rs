@@ -3,49 +3,15 @@
 //! holds its size of the memory budget until it is sent.
 //! A real server on loopback, every wait bounded.
 
+mod common;
 use std::time::{Duration, Instant};
 
+use common::server::start;
 use serde_json::{Value, json};
 use tokio::io::{AsyncReadExt, AsyncWriteExt};
 use tokio::net::{TcpSocket, TcpStream};
-use whirl::service::server::{PROBE_CONNECTIONS, ServerLimits, serve};
-use whirl::service::{AppState, Config, app_with_state};
-
-struct Server {
-    addr: std::net::SocketAddr,
-    state: AppState,
-    stop: Option<tokio::sync::oneshot::Sender<()>>,
-}
-
-impl Drop for Server {
-    fn drop(&mut self) {
-        if let Some(s) = self.stop.take() {
-            let _ = s.send(());
-        }
-    }
-}
-
-async fn start(config: Config) -> Server {
-    let listener = tokio::net::TcpListener::bind("127.0.0.1:0").await.unwrap();
-    let addr = listener.local_addr().unwrap();
-    let limits = ServerLimits::of(&config);
-    let (app, state) = app_with_state(config);
-    let (tx, rx) = tokio::sync::oneshot::channel::<()>();
-    tokio::spawn(serve(
-        listener,
-        app,
-        limits,
-        async {
-            let _ = rx.await;
-        },
-        Duration::from_secs(1),
-    ));
-    Server {
-        addr,
-        state,
-        stop: Some(tx),
-    }
-}
+use whirl::service::Config;
+use whirl::service::server::PROBE_CONNECTIONS;
 
 /// One request on a new connection from `from` (a loopback address), the whole answer.
 async fn request_from(

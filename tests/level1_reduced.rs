@@ -4,30 +4,14 @@
 
 mod common;
 
+use common::{assemble, heldout};
 use serde_json::{Value, json};
 use whirl::analysis::audit::level1::level1;
 use whirl::analysis::audit::level1_reduced::level1_reduced;
 use whirl::analysis::control::Control;
 use whirl::damping::DampedModel;
-use whirl::model::api::{DampingInput, RotorInput};
+use whirl::model::api::DampingInput;
 use whirl::model::damping::DampingModel;
-use whirl::model::rotor::{Limits, Rotor};
-use whirl::system::RotorSystem;
-
-fn assemble(v: Value) -> RotorSystem {
-    let rotor: RotorInput = serde_json::from_value(v).unwrap();
-    RotorSystem::assemble(&Rotor::parse(&rotor, &Limits::default()).unwrap()).unwrap()
-}
-
-fn heldout(i: usize, loss: f64) -> Value {
-    let path = format!(
-        "{}/tests/data/ross/heldout/rotor_{i}.json",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let mut v: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
-    v["materials"]["steel"]["loss_factor"] = json!(loss);
-    v
-}
 
 /// The 45-element stepped shaft on the anisotropic, cross-coupled first bearing of
 /// `aniso.json`.

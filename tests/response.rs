@@ -5,6 +5,7 @@
 
 mod common;
 
+use common::{assemble, heldout};
 use serde_json::{Value, json};
 use whirl::analysis::audit::frequency::{Excitation, Orbit, frequency_response};
 use whirl::analysis::audit::peaks::{self, Peak};
@@ -12,26 +13,9 @@ use whirl::analysis::control::Control;
 use whirl::analysis::response::{Responses, frequency_sweep, unbalance_force, unbalance_sweep};
 use whirl::analysis::unbalance::{SteadyUnbalance, unbalance_response};
 use whirl::damping::DampedModel;
-use whirl::model::api::{DampingInput, RotorInput};
+use whirl::model::api::DampingInput;
 use whirl::model::damping::DampingModel;
-use whirl::model::rotor::{Limits, Rotor};
 use whirl::system::RotorSystem;
-
-fn assemble(v: Value) -> RotorSystem {
-    let rotor: RotorInput = serde_json::from_value(v).unwrap();
-    RotorSystem::assemble(&Rotor::parse(&rotor, &Limits::default()).unwrap()).unwrap()
-}
-
-/// A held-out rotor of the speed benchmark, its shaft's loss factor set to `loss`.
-fn heldout(i: usize, loss: f64) -> Value {
-    let path = format!(
-        "{}/tests/data/ross/heldout/rotor_{i}.json",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let mut v: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
-    v["materials"]["steel"]["loss_factor"] = json!(loss);
-    v
-}
 
 /// The 60-element stepped shaft on two bearings tabulated against speed (cross-coupled,
 /// anisotropic, the first bearing of `speed_dependent.json`).

@@ -9,55 +9,16 @@
 //! and that a dropped connection is reset: closed plainly, its socket would go on trickling
 //! those megabytes to the client for minutes.
 
+mod common;
 use std::time::{Duration, Instant};
 
+use common::server::{Server, start};
 use serde_json::{Value, json};
 use tokio::io::{AsyncReadExt, AsyncWriteExt};
 use tokio::net::{TcpSocket, TcpStream};
-use whirl::service::server::{ServerLimits, serve};
-use whirl::service::{AppState, Config, app_with_state};
+use whirl::service::Config;
 
 const WRITE_TIMEOUT: Duration = Duration::from_secs(2);
-
-struct Server {
-    addr: std::net::SocketAddr,
-    state: AppState,
-    stop: Option<tokio::sync::oneshot::Sender<()>>,
-}
-
-impl Drop for Server {
-    fn drop(&mut self) {
-        if let Some(s) = self.stop.take() {
-            let _ = s.send(());
-        }
-    }
-}
-
-async fn start() -> Server {
-    let config = Config {
-        write_timeout: WRITE_TIMEOUT,
-        ..Config::default()
-    };
-    let listener = tokio::net::TcpListener::bind("127.0.0.1:0").await.unwrap();
-    let addr = listener.local_addr().unwrap();
-    let limits = ServerLimits::of(&config);
-    let (app, state) = app_with_state(config);
-    let (tx, rx) = tokio::sync::oneshot::channel::<()>();
-    tokio::spawn(serve(
-        listener,
-        app,
-        limits,
-        async {
-            let _ = rx.await;
-        },
-        Duration::from_secs(1),
-    ));
-    Server {
-        addr,
-        state,
-        stop: Some(tx),
-    }
-}
 
 /// A time response of 10.5 MB of JSON (2 s of the paper's shock, one node, every 10 us).
 fn large_answer() -> String {
@@ -181,7 +142,11 @@ async fn released(srv: &Server, limit: Duration) -> Duration {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_trickling_reader_is_reset_within_a_write_timeout_and_a_fast_one_gets_it_all() {
-    let srv = start().await;
+    let srv = start(Config {
+        write_timeout: WRITE_TIMEOUT,
+        ..Config::default()
+    })
+    .await;
     let slow = ask_large(srv.addr, true).await;
     // 1 KiB every 250 ms: 4 KB/s, always some progress, an eighth of the minimum.
     let slow = tokio::spawn(read_slowly(
@@ -223,7 +188,11 @@ async fn a_trickling_reader_is_reset_within_a_write_timeout_and_a_fast_one_gets_
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_reader_that_stops_is_dropped_after_the_timeout_and_its_answer_released() {
-    let srv = start().await;
+    let srv = start(Config {
+        write_timeout: WRITE_TIMEOUT,
+        ..Config::default()
+    })
+    .await;
     let mut s = ask_large(srv.addr, true).await;
     // The answer goes out when the analysis ends: from then, its size is held in the budget.
     let t0 = Instant::now();

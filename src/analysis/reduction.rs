@@ -129,12 +129,6 @@ pub fn reduce(
     // the damped modes pivot about the supports, which the free modes alone span poorly; for
     // supports in the general form it also spans their anisotropy and cross-coupling.
     let loads = &with_supports(system, loads)[..];
-    let inside = |v: &[c64]| -> Vec<c64> {
-        v.iter()
-            .cloned()
-            .filter(|s| s.re.abs() <= bound && s.im.abs() <= bound)
-            .collect()
-    };
     // A basis of `m` modes, its reduced model and the poles it gives; `None` if it cannot be
     // built (which only means no reduction) or does not at least halve the state.
     let candidate = |m: usize| -> Option<(ModalBasis, RotorSystem, DampedModel, Vec<c64>)> {
@@ -164,11 +158,7 @@ pub fn reduce(
     };
     let mut current = Some(first);
     while let Some((sub, reduced, model, approx)) = current {
-        let error = distance(&inside(&exact), &approx, criterion).max(distance(
-            &inside(&approx),
-            &exact,
-            criterion,
-        ));
+        let error = both_ways(&exact, &approx, bound, criterion);
         if error <= tolerance {
             let info = Reduction {
                 modes: m,
@@ -203,22 +193,23 @@ pub fn band_error(
     bound: f64,
 ) -> Result<f64, LinalgError> {
     let criterion = Criterion::Relative(TOLERANCE);
+    let (exact, approx) = rayon::join(
+        || full_compared(full, speed, bound, criterion),
+        || compared_at(reduced, speed, criterion),
+    );
+    Ok(both_ways(&exact?, &approx?, bound, criterion))
+}
+
+/// Largest distance from a pole of either set in the box `|Re s|, |Im s| <= bound` to the
+/// nearest of the other set, as `criterion` measures it.
+fn both_ways(exact: &[c64], approx: &[c64], bound: f64, criterion: Criterion) -> f64 {
     let inside = |v: &[c64]| -> Vec<c64> {
         v.iter()
             .cloned()
             .filter(|s| s.re.abs() <= bound && s.im.abs() <= bound)
             .collect()
     };
-    let (exact, approx) = rayon::join(
-        || full_compared(full, speed, bound, criterion),
-        || compared_at(reduced, speed, criterion),
-    );
-    let (exact, approx) = (exact?, approx?);
-    Ok(distance(&inside(&exact), &approx, criterion).max(distance(
-        &inside(&approx),
-        &exact,
-        criterion,
-    )))
+    distance(&inside(exact), approx, criterion).max(distance(&inside(approx), exact, criterion))
 }
 
 /// `loads` with the coordinates where supports and nonrotating dampers act, sorted, once each:

@@ -1,6 +1,8 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 
+pub mod server;
+
 /// Asserts that `value` rounds to `printed` at the printed number of decimals, i.e. agrees to
 /// every printed digit: `|value - printed| <= 0.5 ulp(printed)` (plus round-off).
 pub fn assert_printed(value: f64, printed: &str, what: &str) {
@@ -110,4 +112,27 @@ pub fn floats(v: &serde_json::Value) -> Vec<f64> {
         .iter()
         .map(|x| x.as_f64().unwrap())
         .collect()
+}
+
+/// The rotor of a JSON body, assembled.
+pub fn assemble(v: serde_json::Value) -> whirl::system::RotorSystem {
+    let rotor: whirl::model::api::RotorInput = serde_json::from_value(v).unwrap();
+    let limits = whirl::model::rotor::Limits::default();
+    whirl::system::RotorSystem::assemble(
+        &whirl::model::rotor::Rotor::parse(&rotor, &limits).unwrap(),
+    )
+    .unwrap()
+}
+
+/// A held-out rotor of the speed benchmark (tests/data/ross/heldout), its shaft's loss factor
+/// set to `loss`.
+pub fn heldout(i: usize, loss: f64) -> serde_json::Value {
+    let path = format!(
+        "{}/tests/data/ross/heldout/rotor_{i}.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let mut v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    v["materials"]["steel"]["loss_factor"] = serde_json::json!(loss);
+    v
 }
