@@ -20,7 +20,7 @@ pub fn rotor() -> RotorInput {
         inner_diameter: 0.0,
         material: "steel".into(),
         elements: Some(elements),
-        shear_factor: None,
+        ..Default::default()
     };
     let steel = MaterialInput {
         young_modulus: E,
@@ -39,6 +39,7 @@ pub fn rotor() -> RotorInput {
         }],
         seals: vec![],
         point_masses: vec![],
+        sleeves: vec![],
         supports: vec![
             SupportInput {
                 node: 1,
@@ -607,7 +608,7 @@ pub fn dense_rotor() -> RotorInput {
         inner_diameter,
         material: "steel".into(),
         elements: Some(e),
-        shear_factor: None,
+        ..Default::default()
     })
     .collect();
     b.disks = vec![

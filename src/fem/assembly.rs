@@ -7,6 +7,7 @@
 //! `K''_n = eta k`). Disks add mass on `r`, transverse inertia on `phi` and polar inertia to
 //! the gyroscopic matrix.
 
+use super::conical::{self, Cone};
 use super::element::{self, Mat4, Section};
 use super::guyan;
 use crate::linalg::{LinalgError, RMat};
@@ -14,18 +15,95 @@ use crate::model::api::GuyanKeep;
 use crate::model::rotor::{BeamRotor, MatrixRotor, Rotor, ShaftElement};
 use crate::system::{Dof, DofKind, PlacedSupport, Placement, RotorSystem};
 
-/// The section of an element, with Cowper's shear factor where none was given.
+/// The section of a uniform element (of a conical one, its mean diameters), with Cowper's
+/// shear factor where none was given.
 pub fn section(e: &ShaftElement) -> Section {
+    let outer = 0.5 * (e.outer_diameter + e.outer_diameter_right);
+    let inner = 0.5 * (e.inner_diameter + e.inner_diameter_right);
     Section {
         length: e.length,
-        outer_diameter: e.outer_diameter,
-        inner_diameter: e.inner_diameter,
+        outer_diameter: outer,
+        inner_diameter: inner,
         young_modulus: e.young_modulus,
         density: e.density,
         poisson_ratio: e.poisson_ratio,
-        shear_factor: e.shear_factor.unwrap_or_else(|| {
-            element::cowper_shear_factor(e.outer_diameter, e.inner_diameter, e.poisson_ratio)
-        }),
+        shear_factor: e
+            .shear_factor
+            .unwrap_or_else(|| element::cowper_shear_factor(outer, inner, e.poisson_ratio)),
+    }
+}
+
+/// The matrices of one element: bending stiffness `k`, mass, gyroscopic, and shear parameter.
+pub fn element_matrices(e: &ShaftElement) -> (Mat4, Mat4, Mat4, f64) {
+    if e.conical() {
+        let c = cone(e);
+        (
+            conical::stiffness(&c),
+            conical::mass(&c),
+            conical::gyroscopic(&c),
+            conical::shear_parameter(&c),
+        )
+    } else {
+        let sec = section(e);
+        (
+            element::stiffness(&sec),
+            element::mass(&sec),
+            element::gyroscopic(&sec),
+            sec.shear_parameter(),
+        )
+    }
+}
+
+/// A conical element, with Cowper's factor of its mean diameters where none was given (ROSS).
+fn cone(e: &ShaftElement) -> Cone {
+    let c = Cone {
+        length: e.length,
+        outer_left: e.outer_diameter,
+        inner_left: e.inner_diameter,
+        outer_right: e.outer_diameter_right,
+        inner_right: e.inner_diameter_right,
+        young_modulus: e.young_modulus,
+        density: e.density,
+        poisson_ratio: e.poisson_ratio,
+        shear_factor: 1.0,
+    };
+    let (o, i) = conical::mean_diameters(&c);
+    Cone {
+        shear_factor: e
+            .shear_factor
+            .unwrap_or_else(|| element::cowper_shear_factor(o, i, e.poisson_ratio)),
+        ..c
+    }
+}
+
+/// Adds an element on the degrees of freedom from `at` on: its stiffness and geometric
+/// stiffness are rotating, its loss `eta K_e` rotating hysteretic, its torque circulatory, its
+/// proportional damping in the frame it names.
+fn add_element(s: &mut RotorSystem, at: usize, e: &ShaftElement) {
+    let (k, m, g, p) = element_matrices(e);
+    add(&mut s.stiffness_rotating, at, &k, 1.0);
+    add(&mut s.hysteretic_rotating, at, &k, e.loss_factor);
+    add(&mut s.mass, at, &m, 1.0);
+    add(&mut s.gyroscopic, at, &g, 1.0);
+    let kaf = conical::axial_force(e.axial_force, e.length, p);
+    add(&mut s.stiffness_rotating, at, &kaf, 1.0);
+    if e.torque != 0.0 {
+        add(
+            &mut s.circulatory,
+            at,
+            &conical::torque(e.torque, e.length),
+            1.0,
+        );
+    }
+    if let Some(r) = e.rayleigh {
+        let target = if r.rotating {
+            &mut s.damping_rotating
+        } else {
+            &mut s.damping_nonrotating
+        };
+        add(target, at, &m, r.alpha);
+        add(target, at, &k, r.beta);
+        add(target, at, &kaf, r.beta);
     }
 }
 
@@ -60,6 +138,7 @@ fn structure(rotor: &BeamRotor, n: usize) -> RotorSystem {
         damping_nonrotating: z(),
         hysteretic_rotating: z(),
         hysteretic_nonrotating: z(),
+        circulatory: z(),
         dofs: (0..n)
             .map(|i| match i {
                 i if i >= 2 * shaft => Dof {
@@ -78,13 +157,9 @@ fn structure(rotor: &BeamRotor, n: usize) -> RotorSystem {
             .collect(),
         supports: vec![],
     };
-    for (e, el) in rotor.elements().iter().enumerate() {
-        let sec = section(el);
-        let k = element::stiffness(&sec);
-        add(&mut s.stiffness_rotating, 2 * e, &k, 1.0);
-        add(&mut s.hysteretic_rotating, 2 * e, &k, el.loss_factor);
-        add(&mut s.mass, 2 * e, &element::mass(&sec), 1.0);
-        add(&mut s.gyroscopic, 2 * e, &element::gyroscopic(&sec), 1.0);
+    let sleeves = rotor.sleeves().iter().map(|sl| (sl.over, &sl.element));
+    for (e, el) in rotor.elements().iter().enumerate().chain(sleeves) {
+        add_element(&mut s, 2 * e, el);
     }
     for d in rotor.disks() {
         let (r, phi) = (2 * d.node, 2 * d.node + 1);
@@ -182,6 +257,7 @@ pub fn matrices(m: &MatrixRotor) -> RotorSystem {
         damping_nonrotating: m.damping_nonrotating.clone(),
         hysteretic_rotating: m.hysteretic_rotating.clone(),
         hysteretic_nonrotating: m.hysteretic_nonrotating.clone(),
+        circulatory: RMat::zeros(n, n),
         dofs: (0..n)
             .map(|i| Dof {
                 node: i,

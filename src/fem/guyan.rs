@@ -36,6 +36,8 @@ pub fn reduce(system: &RotorSystem, keep: &[bool]) -> Result<RotorSystem, Linalg
         damping_nonrotating: red(&system.damping_nonrotating),
         hysteretic_rotating: red(&system.hysteretic_rotating),
         hysteretic_nonrotating: red(&system.hysteretic_nonrotating),
+        // Not symmetric: projected as it is.
+        circulatory: t.transpose() * &system.circulatory * &t,
         dofs: kept.iter().map(|&i| system.dofs[i]).collect(),
         supports: system
             .supports

@@ -2,6 +2,7 @@
 //! and the undamped modal basis.
 
 pub mod assembly;
+pub mod conical;
 pub mod element;
 pub mod guyan;
 pub mod modal;

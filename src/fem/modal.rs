@@ -119,6 +119,7 @@ impl ModalBasis {
             &system.damping_nonrotating,
             &system.hysteretic_rotating,
             &system.hysteretic_nonrotating,
+            &system.circulatory,
         ]
         .into_iter()
         .filter(|a| (0..n).any(|j| (0..n).any(|i| a[(i, j)] != 0.0)))
@@ -249,6 +250,7 @@ impl ModalBasis {
             damping_nonrotating: self.project(&system.damping_nonrotating),
             hysteretic_rotating: self.project(&system.hysteretic_rotating),
             hysteretic_nonrotating: self.project(&system.hysteretic_nonrotating),
+            circulatory: self.project(&system.circulatory),
             dofs: (0..self.len())
                 .map(|node| Dof {
                     node,

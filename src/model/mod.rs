@@ -14,6 +14,7 @@ pub mod loads;
 pub mod objects;
 pub mod point_masses;
 pub mod rotor;
+pub mod shaft;
 pub mod speeds;
 pub mod supports;
 pub mod tagged;

@@ -4,6 +4,8 @@ use super::api::{BeamInput, GuyanKeep, MatricesInput, RotorInput};
 use super::error::{Invalid, finite, loss_factor, non_negative, positive};
 pub use super::point_masses::PointMass;
 use super::point_masses::{nodes_off_shaft, parse_point_masses};
+use super::shaft::{Material, SectionInput, parse_section, parse_sleeves};
+pub use super::shaft::{Rayleigh, ShaftElement, Sleeve};
 use super::supports::GeneralSupport;
 pub use super::supports::{Support, parse_supports, support_path};
 use crate::linalg::{self, RMat};
@@ -73,7 +75,10 @@ impl Rotor {
                 j.loss_factor_nonrotating() > 0.0,
             ),
             Rotor::Beam(b) => (
-                b.elements.iter().any(|e| e.loss_factor > 0.0),
+                b.elements
+                    .iter()
+                    .chain(b.sleeves.iter().map(|s| &s.element))
+                    .any(|e| e.loss_factor > 0.0),
                 b.supports
                     .iter()
                     .any(|s| s.loss_factor > 0.0 && s.stiffness > 0.0),
@@ -105,21 +110,6 @@ impl Rotor {
     }
 }
 
-/// One shaft element, its section and material.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ShaftElement {
-    pub length: f64,
-    pub outer_diameter: f64,
-    pub inner_diameter: f64,
-    pub young_modulus: f64,
-    pub density: f64,
-    pub poisson_ratio: f64,
-    /// Rotating hysteretic damping of the material.
-    pub loss_factor: f64,
-    /// `None`: Cowper's formula.
-    pub shear_factor: Option<f64>,
-}
-
 /// A rigid disk.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Disk {
@@ -134,6 +124,8 @@ pub struct Disk {
 #[derive(Debug, Clone, PartialEq)]
 pub struct BeamRotor {
     elements: Vec<ShaftElement>,
+    /// Elements laid over the shaft's.
+    sleeves: Vec<Sleeve>,
     disks: Vec<Disk>,
     point_masses: Vec<PointMass>,
     /// Nodes off the shaft.
@@ -146,6 +138,23 @@ pub struct BeamRotor {
 impl BeamRotor {
     pub fn elements(&self) -> &[ShaftElement] {
         &self.elements
+    }
+    /// Elements laid over the shaft's, their matrices added to those of the element under.
+    pub fn sleeves(&self) -> &[Sleeve] {
+        &self.sleeves
+    }
+    /// Each shaft element's mass with the sleeves laid over it, kg.
+    pub fn element_masses(&self) -> Vec<f64> {
+        let mut m: Vec<f64> = self.elements.iter().map(ShaftElement::mass).collect();
+        for s in &self.sleeves {
+            m[s.over] += s.element.mass();
+        }
+        m
+    }
+    /// Mass of the shaft, sleeves included, kg.
+    pub fn shaft_mass(&self) -> f64 {
+        self.elements.iter().map(ShaftElement::mass).sum::<f64>()
+            + self.sleeves.iter().map(|s| s.element.mass()).sum::<f64>()
     }
     pub fn disks(&self) -> &[Disk] {
         &self.disks
@@ -251,64 +260,35 @@ impl BeamRotor {
                 ),
             );
         }
+        let defined: Vec<&str> = b.materials.keys().map(String::as_str).collect();
+        let materials: std::collections::BTreeMap<String, Material> = materials;
         let mut elements = vec![];
         for (i, seg) in b.shaft.iter().enumerate() {
             let at = format!("rotor.shaft[{i}]");
             let length = bad.check(&format!("{at}.length"), positive(seg.length));
-            let outer = bad.check(
-                &format!("{at}.outer_diameter"),
-                positive(seg.outer_diameter),
+            let section = parse_section(
+                &SectionInput {
+                    outer: seg.outer_diameter,
+                    inner: seg.inner_diameter,
+                    outer_right: seg.outer_diameter_right,
+                    inner_right: seg.inner_diameter_right,
+                    material: &seg.material,
+                    shear_factor: seg.shear_factor,
+                    axial_force: seg.axial_force,
+                    torque: seg.torque,
+                    rayleigh: seg.rayleigh_damping.as_ref(),
+                },
+                &at,
+                &materials,
+                &defined,
+                &mut bad,
             );
-            let inner = bad.check(
-                &format!("{at}.inner_diameter"),
-                non_negative(seg.inner_diameter),
-            );
-            if let (Some(o), Some(i_)) = (outer, inner)
-                && i_ >= o
-            {
-                bad.push(
-                    format!("{at}.inner_diameter"),
-                    format!("must be smaller than the outer diameter {o} (got {i_})"),
-                );
-            }
-            let shear = match seg.shear_factor {
-                None => Some(None),
-                Some(x) => bad
-                    .check(&format!("{at}.shear_factor"), positive(x))
-                    .map(Some),
-            };
-            let material = materials.get(&seg.material).copied();
-            if material.is_none() && !b.materials.contains_key(&seg.material) {
-                let known: Vec<&str> = b.materials.keys().map(String::as_str).collect();
-                bad.push(
-                    format!("{at}.material"),
-                    format!(
-                        "unknown material `{}` (defined: {})",
-                        seg.material,
-                        if known.is_empty() {
-                            "none".into()
-                        } else {
-                            known.join(", ")
-                        }
-                    ),
-                );
-            }
-            if let (Some(l), Some(o), Some(i_), Some(sh), Some(n), Some((e, rho, nu, eta))) =
-                (length, outer, inner, shear, counts[i], material)
-                && i_ < o
+            if let (Some(l), Some(sec), Some(n)) = (length, section, counts[i])
                 && !too_many
             {
-                for _ in 0..n {
-                    elements.push(ShaftElement {
-                        length: l / n as f64,
-                        outer_diameter: o,
-                        inner_diameter: i_,
-                        young_modulus: e,
-                        density: rho,
-                        poisson_ratio: nu,
-                        loss_factor: eta,
-                        shear_factor: sh,
-                    });
+                for k in 0..n {
+                    let (t0, t1) = (k as f64 / n as f64, (k + 1) as f64 / n as f64);
+                    elements.push(sec.element(l / n as f64, t0, t1));
                 }
             }
         }
@@ -398,8 +378,21 @@ impl BeamRotor {
         let (seals, general_seals) = parse_supports(&b.seals, true, &mut bad, &mut node_ok);
         supports.extend(seals);
         general_supports.extend(general_seals);
+        let sleeves = if bad.is_empty() {
+            parse_sleeves(
+                &b.sleeves,
+                &elements,
+                max_elements,
+                &materials,
+                &defined,
+                &mut bad,
+            )
+        } else {
+            vec![]
+        };
         bad.into_result(|| BeamRotor {
             elements,
+            sleeves,
             disks,
             point_masses,
             off_shaft,

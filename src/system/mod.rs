@@ -60,6 +60,9 @@ pub struct RotorSystem {
     pub hysteretic_rotating: RMat,
     /// Imaginary (hysteretic) stiffness `K''_n` of the nonrotating parts.
     pub hysteretic_nonrotating: RMat,
+    /// Circulatory stiffness `S` (not symmetric): the stiffness is `K + i S` whatever the
+    /// frequency's sign (a shaft's torque, `fem::conical`).
+    pub circulatory: RMat,
     pub dofs: Vec<Dof>,
     /// Supports in the general form, each on the degree of freedom of its translation.
     pub supports: Vec<PlacedSupport>,
@@ -113,6 +116,7 @@ impl RotorSystem {
             damping_nonrotating: one(j.damping_nonrotating()),
             hysteretic_rotating: one(j.loss_factor_rotating() * j.stiffness()),
             hysteretic_nonrotating: one(j.loss_factor_nonrotating() * j.stiffness()),
+            circulatory: one(0.0),
             dofs: vec![Dof {
                 node: 0,
                 kind: DofKind::Translation,

@@ -57,6 +57,22 @@ fn blocks(a: &RMat, layout: Layout) -> CMat {
     }
 }
 
+/// Adds `i S` on the `r` block and its conjugate `-i S` on the `conj r` block.
+fn add_circulatory(target: &mut CMat, s: &RMat, layout: Layout) {
+    let n = s.nrows();
+    for j in 0..n {
+        for i in 0..n {
+            let a = s[(i, j)];
+            if a != 0.0 {
+                target[(i, j)] += c64::new(0.0, a);
+                if layout == Layout::Doubled {
+                    target[(n + i, n + j)] += c64::new(0.0, -a);
+                }
+            }
+        }
+    }
+}
+
 /// Adds a support coefficient matrix on the translation `sum w_i q_i` (`weights`).
 fn add_support(target: &mut CMat, weights: &[(usize, f64)], n: usize, a: &Matrix2, layout: Layout) {
     let (iso, an) = a.complex();
@@ -106,6 +122,7 @@ impl Realized {
                 Layout::Doubled => (0..2 * n).map(|i| if i < n { 1.0 } else { -1.0 }).collect(),
             },
         };
+        add_circulatory(&mut r.stiffness, &system.circulatory, layout);
         for p in &system.supports {
             let c = coefficients(&p.support);
             let d = p.at.weights();
@@ -187,6 +204,7 @@ mod tests {
             damping_nonrotating: one(0.0),
             hysteretic_rotating: one(0.0),
             hysteretic_nonrotating: one(0.0),
+            circulatory: one(0.0),
             dofs: vec![Dof {
                 node: 0,
                 kind: DofKind::Translation,

@@ -1,6 +1,7 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 
+pub mod ross;
 pub mod server;
 
 /// Asserts that `value` rounds to `printed` at the printed number of decimals, i.e. agrees to

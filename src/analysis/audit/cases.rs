@@ -52,18 +52,13 @@ pub fn overhung_mass(rotor: &BeamRotor, statics: &StaticResult, left: bool) -> O
     };
     let outboard = |node: usize| if left { node < lo } else { node > hi };
     let shaft: f64 = rotor
-        .elements()
+        .element_masses()
         .iter()
         .enumerate()
         // Element k joins nodes k and k + 1: outboard when both ends are (or one is the
         // bearing's own node).
         .filter(|(k, _)| if left { *k < lo } else { *k >= hi })
-        .map(|(_, e)| {
-            e.density
-                * e.length
-                * std::f64::consts::FRAC_PI_4
-                * (e.outer_diameter.powi(2) - e.inner_diameter.powi(2))
-        })
+        .map(|(_, m)| m)
         .sum();
     let disks: Vec<f64> = rotor
         .disks()

@@ -176,11 +176,10 @@ pub fn static_deflection(
     for d in rotor.disks() {
         force[d.node] -= gravity * d.mass;
     }
+    // Inside a conical element, or one with a sleeve, the curve is that of the mid section
+    // under the element's whole weight: exact at the nodes, not between them.
     let sections: Vec<_> = rotor.elements().iter().map(assembly::section).collect();
-    let element_weight: Vec<f64> = sections
-        .iter()
-        .map(|s| gravity * s.density * s.area() * s.length)
-        .collect();
+    let element_weight: Vec<f64> = rotor.element_masses().iter().map(|m| gravity * m).collect();
     // Each element's deflection curve in each plane: its weight loads the y plane only.
     let curve = |e: usize, t: f64| {
         let ends = |u: &[f64]| [u[2 * e], u[2 * e + 1], u[2 * e + 2], u[2 * e + 3]];

@@ -11,6 +11,7 @@ mod audit;
 mod loads;
 mod report;
 mod service;
+mod shaft;
 mod units;
 
 pub use analyses::*;
@@ -18,6 +19,7 @@ pub use audit::*;
 pub use loads::*;
 pub use report::*;
 pub use service::*;
+pub use shaft::*;
 pub use units::*;
 
 use serde::{Deserialize, Deserializer, Serialize};
@@ -107,6 +109,11 @@ pub struct BeamInput {
     /// the pedestal.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub point_masses: Vec<PointMassInput>,
+    /// Elements laid over the shaft's (sleeves, shrink fits, laminations): each spans shaft
+    /// elements from node `node` on, and its matrices add to theirs (ROSS: several shaft
+    /// elements on the same nodes).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub sleeves: Vec<SleeveInput>,
     /// Optional Guyan reduction: `{"guyan": "translations"}` keeps the translations and
     /// condenses the rotations.
     #[serde(default)]
@@ -133,7 +140,7 @@ pub struct MaterialInput {
 }
 
 /// A uniform, hollow or solid, shaft segment.
-#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[derive(Debug, Clone, Default, Deserialize, Serialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SegmentInput {
     /// Length, m (> 0).
@@ -151,9 +158,29 @@ pub struct SegmentInput {
     /// Number of equal elements the segment is split into (default 1).
     #[serde(default)]
     pub elements: Option<i64>,
-    /// Shear factor chi = 1/kappa (default: Cowper's formula for the annulus).
+    /// Shear factor chi = 1/kappa (default: Cowper's formula for the annulus; of a conical
+    /// element, for its mean diameters, as ROSS computes it).
     #[serde(default)]
     pub shear_factor: Option<f64>,
+    /// Outer diameter at the segment's right end, m (default `outer_diameter`): a conical
+    /// segment, its diameters linear along it; each of its elements is Genta and Gugliotta's
+    /// conical Timoshenko element as ROSS implements it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub outer_diameter_right: Option<f64>,
+    /// Inner diameter at the segment's right end, m (default `inner_diameter`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub inner_diameter_right: Option<f64>,
+    /// Axial force in the segment, N (tension > 0, compression < 0): its geometric stiffness
+    /// (ROSS's `axial_force`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub axial_force: Option<f64>,
+    /// Torque carried by the segment, N m: its geometric stiffness couples the two bending
+    /// planes (ROSS's `torque`; in complex coordinates an imaginary, circulatory stiffness).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub torque: Option<f64>,
+    /// Proportional (Rayleigh) viscous damping of the segment's elements.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rayleigh_damping: Option<RayleighInput>,
 }
 
 /// A rigid disk at a node.

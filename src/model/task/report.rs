@@ -330,19 +330,9 @@ fn sha256_hex(bytes: &[u8]) -> String {
         .collect()
 }
 
-/// Mass of shaft and disks, kg.
+/// Mass of shaft (sleeves included) and disks, kg.
 fn rotor_mass(rotor: &BeamRotor) -> f64 {
-    let shaft: f64 = rotor
-        .elements()
-        .iter()
-        .map(|e| {
-            e.density
-                * e.length
-                * std::f64::consts::FRAC_PI_4
-                * (e.outer_diameter.powi(2) - e.inner_diameter.powi(2))
-        })
-        .sum();
-    shaft + rotor.disks().iter().map(|d| d.mass).sum::<f64>()
+    rotor.shaft_mass() + rotor.disks().iter().map(|d| d.mass).sum::<f64>()
 }
 
 /// Tasks run one after the other: the largest heap, the sum of the work and the answers.

@@ -113,7 +113,13 @@ fn beam(root: &Area<'_>, b: &BeamInput) -> Result<(), Err> {
     let d_max = b
         .shaft
         .iter()
-        .map(|s| s.outer_diameter)
+        .flat_map(|s| [Some(s.outer_diameter), s.outer_diameter_right])
+        .chain(
+            b.sleeves
+                .iter()
+                .flat_map(|s| [Some(s.outer_diameter), s.outer_diameter_right]),
+        )
+        .flatten()
         .filter(|d| d.is_finite())
         .fold(0.0, f64::max);
     let d_px = if d_max > 0.0 {
@@ -133,26 +139,55 @@ fn beam(root: &Area<'_>, b: &BeamInput) -> Result<(), Err> {
     )?;
     let mut labels = Labels::new([0, 30, W, H]);
 
+    let half = |d: f64, min: i32| ((d * d_px / 2.0).round() as i32).max(min);
+    // A section from a to e, its half heights at both ends (a cone is a trapezium).
+    let section = |a: i32, e: i32, hl: i32, hr: i32| {
+        vec![
+            (a, AXIS - hl),
+            (e, AXIS - hr),
+            (e, AXIS + hr),
+            (a, AXIS + hl),
+        ]
+    };
+    // Sleeves first, lighter, under the shaft they sit on.
+    for s in &b.sleeves {
+        let first = s.node.max(0) as usize;
+        let last = first + s.elements.unwrap_or(1).max(1) as usize;
+        let (Some(&x0), Some(&x1)) = (nodes.get(first), nodes.get(last)) else {
+            continue;
+        };
+        let (hl, hr) = (
+            half(s.outer_diameter, 2),
+            half(s.outer_diameter_right.unwrap_or(s.outer_diameter), 2),
+        );
+        let outline = section(px(x0), px(x1), hl, hr);
+        root.draw(&Polygon::new(outline.clone(), STEEL.mix(0.45).filled()))?;
+        let mut closed = outline;
+        closed.push(closed[0]);
+        root.draw(&PathElement::new(closed, STEEL_EDGE.mix(0.6)))?;
+    }
     // Shaft segments, bores lighter.
     let mut x = 0.0;
     let mut half_at = vec![0; nodes.len()];
     let mut node = 0;
     for s in &b.shaft {
-        let h = ((s.outer_diameter * d_px / 2.0).round() as i32).max(2);
+        let (hl, hr) = (
+            half(s.outer_diameter, 2),
+            half(s.outer_diameter_right.unwrap_or(s.outer_diameter), 2),
+        );
+        let h = hl.max(hr);
         let (a, e) = (px(x), px(x + s.length));
-        root.draw(&Rectangle::new(
-            [(a, AXIS - h), (e, AXIS + h)],
-            STEEL.filled(),
-        ))?;
-        root.draw(&Rectangle::new(
-            [(a, AXIS - h), (e, AXIS + h)],
-            STEEL_EDGE.stroke_width(1),
-        ))?;
+        let outline = section(a, e, hl, hr);
+        root.draw(&Polygon::new(outline.clone(), STEEL.filled()))?;
+        let mut closed = outline;
+        closed.push(closed[0]);
+        root.draw(&PathElement::new(closed, STEEL_EDGE.stroke_width(1)))?;
         labels.block([a, AXIS - h, e, AXIS + h]);
-        if s.inner_diameter > 0.0 && s.inner_diameter < s.outer_diameter {
-            let hi = ((s.inner_diameter * d_px / 2.0).round() as i32).max(1);
-            root.draw(&Rectangle::new(
-                [(a + 1, AXIS - hi), (e - 1, AXIS + hi)],
+        let inner_r = s.inner_diameter_right.unwrap_or(s.inner_diameter);
+        if s.inner_diameter.max(inner_r) > 0.0 {
+            let (il, ir) = (half(s.inner_diameter, 0), half(inner_r, 0));
+            root.draw(&Polygon::new(
+                section(a + 1, e - 1, il, ir),
                 WHITE.mix(0.7).filled(),
             ))?;
         }

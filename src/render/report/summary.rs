@@ -11,7 +11,12 @@ pub(super) fn model_rows(report: &ReportResponse, rotor: &RotorInput) -> Vec<Str
         RotorInput::Beam(b) => {
             let elements: i64 = b.shaft.iter().map(|s| s.elements.unwrap_or(1).max(1)).sum();
             let length: f64 = b.shaft.iter().map(|s| s.length).sum();
-            let dmax = b.shaft.iter().map(|s| s.outer_diameter).fold(0.0, f64::max);
+            let dmax = b
+                .shaft
+                .iter()
+                .flat_map(|s| [Some(s.outer_diameter), s.outer_diameter_right])
+                .flatten()
+                .fold(0.0, f64::max);
             row(
                 "shaft",
                 format!(
@@ -22,6 +27,12 @@ pub(super) fn model_rows(report: &ReportResponse, rotor: &RotorInput) -> Vec<Str
                 ),
             );
             row("elements / nodes", format!("{elements} / {}", elements + 1));
+            if !b.sleeves.is_empty() {
+                row(
+                    "sleeves",
+                    format!("{} (matrices added to the shaft's)", b.sleeves.len()),
+                );
+            }
             let names: Vec<&str> = b.materials.keys().map(String::as_str).collect();
             row("materials", names.join(", "));
             let mass: f64 = b.disks.iter().map(|d| d.mass).sum();

@@ -1,0 +1,201 @@
+//! Shaft elements beyond uniform segments (issue 29): conical elements, axial force and
+//! torque, proportional damping and sleeves, against ROSS 2.3.0's lateral poles and unbalance
+//! response on the same rotors (`tests/data/ross/elements.py`), and a conical element against
+//! a fine stepped mesh.
+
+mod common;
+
+use common::ross::*;
+use serde_json::{Value, json};
+use whirl::analysis::poles::poles_at;
+use whirl::damping::DampedModel;
+use whirl::model::Limits;
+use whirl::model::api::RotorInput;
+use whirl::model::rotor::Rotor;
+
+#[test]
+fn conical_elements_give_rosss_poles_and_unbalance_response() {
+    poles_match("tapered.json", 1e-6);
+    unbalance_match("tapered.json", 1e-6);
+}
+
+#[test]
+fn axial_force_torque_and_proportional_damping_give_rosss_poles_and_response() {
+    poles_match("loaded.json", 1e-6);
+    unbalance_match("loaded.json", 1e-6);
+}
+
+#[test]
+fn sleeves_on_the_shafts_nodes_give_rosss_poles_and_response() {
+    poles_match("sleeved.json", 1e-6);
+    unbalance_match("sleeved.json", 1e-6);
+}
+
+/// Natural frequencies (rad/s) at rest, undamped, lowest first.
+fn frequencies(rotor: &Value, count: usize) -> Vec<f64> {
+    let s = system(rotor);
+    let model = DampedModel::build(&s, &damping(json!({"model": "viscous"}), s.n())).unwrap();
+    let set = poles_at(&model, 0.0).unwrap();
+    let mut w: Vec<f64> = set
+        .rotor
+        .iter()
+        .map(|p| p.s.im)
+        .filter(|&w| w > 1.0)
+        .collect();
+    w.sort_by(f64::total_cmp);
+    w.dedup_by(|a, b| (*a - *b).abs() < 1e-9 * *b);
+    w.truncate(count);
+    w
+}
+
+/// A 0.8 m solid cone from 40 to 100 mm on two stiff supports, as `n` conical elements or as
+/// `n` uniform elements of each element's mean diameter.
+fn cone(n: usize, stepped: bool) -> Value {
+    let (l, d0, d1) = (0.8, 0.04, 0.1);
+    let shaft: Vec<Value> = if stepped {
+        (0..n)
+            .map(|k| {
+                let mid = d0 + (d1 - d0) * (k as f64 + 0.5) / n as f64;
+                json!({"length": l / n as f64, "outer_diameter": mid, "material": "steel"})
+            })
+            .collect()
+    } else {
+        vec![
+            json!({"length": l, "outer_diameter": d0, "outer_diameter_right": d1,
+                    "material": "steel", "elements": n}),
+        ]
+    };
+    json!({"type": "beam",
+           "materials": {"steel": {"young_modulus": 2.11e11, "density": 7810.0, "poisson_ratio": 0.3}},
+           "shaft": shaft,
+           "supports": [{"node": 0, "stiffness": 1e9}, {"node": n, "stiffness": 1e9}]})
+}
+
+#[test]
+fn a_conical_mesh_and_a_fine_stepped_mesh_converge_to_the_same_frequencies() {
+    // A stepped mesh converges as 1/n^2 (its steps' error in mass and stiffness is second
+    // order in the step): its limit, by Richardson from 160 and 320 steps, is the cone's
+    // frequencies. ROSS's conical element converges to the same limit, also as 1/n^2, with a
+    // larger constant when shear counts (its shear parameter is the mid section's): 10, 40 and
+    // 160 conical elements are 9.9e-3, 6.6e-4 and 4.2e-5 off over the four lowest modes, where
+    // 40 steps are 2.6e-4 off in the first (ROSS gives the same numbers for both meshes).
+    let (s160, s320) = (
+        frequencies(&cone(160, true), 4),
+        frequencies(&cone(320, true), 4),
+    );
+    let limit: Vec<f64> = s160
+        .iter()
+        .zip(&s320)
+        .map(|(a, b)| b + (b - a) / 3.0)
+        .collect();
+    let error = |w: &[f64]| {
+        w.iter()
+            .zip(&limit)
+            .map(|(a, b)| ((a - b) / b).abs())
+            .fold(0.0, f64::max)
+    };
+    let e: Vec<f64> = [10, 40, 160]
+        .iter()
+        .map(|&n| error(&frequencies(&cone(n, false), 4)))
+        .collect();
+    println!("limit {limit:?} rad/s; conical 10/40/160 elements off by {e:?}");
+    assert!(e[0] / e[1] > 8.0 && e[1] / e[2] > 8.0, "{e:?}");
+    assert!(e[2] < 5e-5, "{e:?}");
+}
+
+#[test]
+fn bad_sections_and_sleeves_name_their_fields() {
+    let rotor = json!({"type": "beam",
+        "materials": {"steel": {"young_modulus": 2.11e11, "density": 7810.0, "poisson_ratio": 0.3}},
+        "shaft": [{"length": 1.0, "outer_diameter": 0.05, "inner_diameter": 0.01,
+                   "inner_diameter_right": 0.06, "outer_diameter_right": 0.055,
+                   "material": "steel", "elements": 4,
+                   "rayleigh_damping": {"alpha": -1.0}}],
+        "sleeves": [{"node": 4, "outer_diameter": 0.08, "material": "steel"},
+                    {"node": 1, "elements": 9, "outer_diameter": 0.08, "material": "gold"}],
+        "supports": [{"node": 0, "stiffness": 1e7}]});
+    let input: RotorInput = serde_json::from_value(rotor).unwrap();
+    let err = Rotor::parse(&input, &Limits::default()).unwrap_err();
+    let paths: Vec<&str> = err.errors().iter().map(|e| e.path.as_str()).collect();
+    for p in [
+        "rotor.shaft[0].inner_diameter_right",
+        "rotor.shaft[0].rayleigh_damping.alpha",
+    ] {
+        assert!(paths.contains(&p), "{p} missing from {paths:?}");
+    }
+    // With the shaft fixed, the sleeves' own errors.
+    let rotor = json!({"type": "beam",
+        "materials": {"steel": {"young_modulus": 2.11e11, "density": 7810.0, "poisson_ratio": 0.3}},
+        "shaft": [{"length": 1.0, "outer_diameter": 0.05, "material": "steel", "elements": 4}],
+        "sleeves": [{"node": 4, "outer_diameter": 0.08, "material": "steel"},
+                    {"node": 1, "elements": 9, "outer_diameter": 0.08, "material": "gold"}],
+        "supports": [{"node": 0, "stiffness": 1e7}]});
+    let input: RotorInput = serde_json::from_value(rotor).unwrap();
+    let err = Rotor::parse(&input, &Limits::default()).unwrap_err();
+    let paths: Vec<&str> = err.errors().iter().map(|e| e.path.as_str()).collect();
+    for p in [
+        "rotor.sleeves[0].node",
+        "rotor.sleeves[1].elements",
+        "rotor.sleeves[1].material",
+    ] {
+        assert!(paths.contains(&p), "{p} missing from {paths:?}");
+    }
+}
+
+/// The rotor with proportional damping `beta K` on its shaft in `frame`, on undamped supports.
+fn internally_damped(frame: &str) -> Value {
+    json!({"type": "beam",
+        "materials": {"steel": {"young_modulus": 2.11e11, "density": 7810.0, "poisson_ratio": 0.3}},
+        "shaft": [{"length": 1.2, "outer_diameter": 0.05, "material": "steel", "elements": 12,
+                   "rayleigh_damping": {"alpha": 0.0, "beta": 2e-4, "frame": frame}}],
+        "disks": [{"node": 6, "mass": 20.0, "polar_inertia": 0.2, "transverse_inertia": 0.1}],
+        "supports": [{"node": 0, "stiffness": 5e7}, {"node": 12, "stiffness": 5e7}]})
+}
+
+fn largest_real_part(rotor: &Value, speed: f64) -> (f64, Vec<whirl::linalg::c64>) {
+    let s = system(rotor);
+    let model = DampedModel::build(&s, &damping(json!({"model": "viscous"}), s.n())).unwrap();
+    let set = poles_at(&model, speed).unwrap();
+    let poles: Vec<_> = set.rotor.iter().map(|p| p.s).collect();
+    (poles.iter().map(|s| s.re).fold(f64::MIN, f64::max), poles)
+}
+
+#[test]
+fn rotating_proportional_damping_destabilises_exactly_at_the_forward_critical_speed() {
+    // With damping only in the rotating shaft, a pole s = i w on the axis needs
+    // (K - w^2 M + w Omega G) x + i (w - Omega) C_r x = 0: the damping vanishes only at w = Omega,
+    // so the threshold is the speed at which a forward whirl is synchronous (Jeffcott: the
+    // critical speed sqrt(k / m)), and nonrotating damping of the same size never destabilises.
+    let rotating = internally_damped("rotating");
+    let nonrotating = internally_damped("nonrotating");
+    let (at_rest_r, poles_r) = largest_real_part(&rotating, 0.0);
+    let (at_rest_n, poles_n) = largest_real_part(&nonrotating, 0.0);
+    assert!(at_rest_r < 0.0);
+    assert!((at_rest_r - at_rest_n).abs() < 1e-9 * at_rest_r.abs());
+    assert!(
+        distance(&poles_r, &poles_n) < 1e-9,
+        "at rest the frames agree"
+    );
+    let (mut lo, mut hi) = (0.0, 2000.0);
+    assert!(
+        largest_real_part(&rotating, hi).0 > 0.0,
+        "unstable at {hi} rad/s"
+    );
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if largest_real_part(&rotating, mid).0 > 0.0 {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    let threshold = 0.5 * (lo + hi);
+    let (_, poles) = largest_real_part(&rotating, threshold);
+    let synchronous = poles
+        .iter()
+        .map(|s| ((s.im - threshold) / threshold).abs() + (s.re / threshold).abs())
+        .fold(f64::INFINITY, f64::min);
+    println!("threshold {threshold:.6} rad/s; nearest pole off synchronous by {synchronous:.2e}");
+    assert!(synchronous < 1e-6, "{synchronous:.2e}");
+    assert!(largest_real_part(&nonrotating, 2.0 * threshold).0 < 0.0);
+}
