@@ -199,3 +199,18 @@ fn rotating_proportional_damping_destabilises_exactly_at_the_forward_critical_sp
     assert!(synchronous < 1e-6, "{synchronous:.2e}");
     assert!(largest_real_part(&nonrotating, 2.0 * threshold).0 < 0.0);
 }
+
+#[test]
+fn the_rotor_sketch_draws_cones_and_sleeves() {
+    use whirl::render::plot_audit::rotor_sketch;
+    for file in ["tapered.json", "sleeved.json"] {
+        let rotor: RotorInput = serde_json::from_value(data(file)["rotor"].clone()).unwrap();
+        let svg = rotor_sketch(&rotor).unwrap();
+        // A cone is a trapezium: a polygon whose two vertical edges differ in height.
+        assert!(svg.contains("<polygon"), "{file}");
+        let png = whirl::render::png::png(&svg).unwrap();
+        let out = format!("{}/{file}.sketch.png", env!("CARGO_TARGET_TMPDIR"));
+        std::fs::write(&out, png).unwrap();
+        println!("{out}");
+    }
+}
