@@ -225,26 +225,44 @@ fn frequency_response_is_a_bode_plot() {
 fn rotor_sketch_draws_segments_disks_and_supports() {
     let svg = rotor_sketch(&rotor()).unwrap();
     let rects = elements(&svg, "rect");
-    let filled = |c: &str| {
-        rects
-            .iter()
-            .filter(|a| a["fill"] == c)
-            .map(|a| f(a, "height"))
-            .collect::<Vec<_>>()
-    };
-    let shaft = filled("#B2BECC");
-    let disk = filled("#1F77B4");
+    let disk: Vec<f64> = rects
+        .iter()
+        .filter(|a| a["fill"] == "#1F77B4")
+        .map(|a| f(a, "height"))
+        .collect();
+    // Segments are polygons (a conical one a trapezium): their boxes' heights and widths.
+    let polygons = elements(&svg, "polygon");
+    let boxes: Vec<(f64, f64)> = polygons
+        .iter()
+        .filter(|a| a["fill"] == "#B2BECC")
+        .map(|a| {
+            let pts: Vec<(f64, f64)> = a["points"]
+                .split_whitespace()
+                .map(|p| {
+                    let (x, y) = p.split_once(',').unwrap();
+                    (x.parse().unwrap(), y.parse().unwrap())
+                })
+                .collect();
+            let span = |k: fn(&(f64, f64)) -> f64| {
+                let v: Vec<f64> = pts.iter().map(k).collect();
+                v.iter().cloned().fold(f64::MIN, f64::max)
+                    - v.iter().cloned().fold(f64::MAX, f64::min)
+            };
+            (span(|p| p.0), span(|p| p.1))
+        })
+        .collect();
+    let shaft: Vec<f64> = boxes.iter().map(|b| b.1).collect();
     assert_eq!(shaft.len(), 3);
     assert_eq!(disk.len(), 1);
     assert!(shaft[1] > shaft[0] && disk[0] > 2.0 * shaft[1]);
     // Segment widths to scale: 0.1 : 1.3 : 0.1.
-    let widths: Vec<f64> = rects
-        .iter()
-        .filter(|a| a["fill"] == "#B2BECC")
-        .map(|a| f(a, "width"))
-        .collect();
+    let widths: Vec<f64> = boxes.iter().map(|b| b.0).collect();
     assert!((widths[1] / widths[0] - 13.0).abs() < 0.3);
-    assert_eq!(elements(&svg, "polygon").len(), 2, "a triangle per support");
+    assert_eq!(
+        polygons.len(),
+        3 + 2,
+        "the segments and a triangle per support"
+    );
     for n in 0..=10 {
         assert!(
             svg.contains(&format!(">\n{n}\n</text>")),

@@ -471,16 +471,40 @@ fn criticals(svg: &mut Svg, p: &Panel, c: &CampbellResponse) {
         svg.circle_px(p.px((x.speed, x.speed)), 3.0, "#FFFFFF", SYNC);
     }
     let marked: Vec<&&CriticalSpeed> = inside.iter().filter(|x| !x.critically_damped).collect();
-    let pts: Vec<(f64, f64)> = marked.iter().map(|x| p.px((x.speed, x.speed))).collect();
+    for x in &marked {
+        let q = p.px((x.speed, x.speed));
+        if x.whirl == ApiWhirl::Backward {
+            svg.circle_px(q, 5.0, "#FFFFFF", INK);
+        } else {
+            svg.circle_px(q, 5.0, INK, "#FFFFFF");
+        }
+    }
+    // Crossings at the same printed speed (a forward and a backward branch crossing 1x
+    // together, as an isotropic Jeffcott rotor's do) share one label naming both.
+    let mut groups: Vec<Vec<&&CriticalSpeed>> = vec![];
+    for x in &marked {
+        match groups.last_mut() {
+            Some(g) if speed_label(g[0].speed) == speed_label(x.speed) => g.push(x),
+            _ => groups.push(vec![x]),
+        }
+    }
+    let pts: Vec<(f64, f64)> = groups
+        .iter()
+        .map(|g| p.px((g[0].speed, g[0].speed)))
+        .collect();
     let ys: Vec<f64> = pts.iter().map(|q| q.1 + 16.0).collect();
     let ys = spread(&ys, 15.0, p.rect[1] + 12.0, p.rect[3] - 4.0);
-    for ((q, y), x) in pts.iter().zip(ys).zip(&marked) {
-        if x.whirl == ApiWhirl::Backward {
-            svg.circle_px(*q, 5.0, "#FFFFFF", INK);
-        } else {
-            svg.circle_px(*q, 5.0, INK, "#FFFFFF");
+    for ((q, y), g) in pts.iter().zip(ys).zip(&groups) {
+        let mut s = speed_label(g[0].speed);
+        let (f, b) = (
+            g.iter().any(|x| x.whirl != ApiWhirl::Backward),
+            g.iter().any(|x| x.whirl == ApiWhirl::Backward),
+        );
+        if f && b {
+            s += ", forward and backward";
+        } else if g.len() > 1 {
+            s += &format!(", {} crossings", g.len());
         }
-        let s = speed_label(x.speed);
         let right = q.0 + 10.0 + text_width(&s, 12.0) < p.rect[2];
         let (x, anchor) = if right {
             (q.0 + 8.0, Anchor::Start)

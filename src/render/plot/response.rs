@@ -281,11 +281,22 @@ fn peak_marks(svg: &mut Svg, p: &Panel, mut marks: Vec<((f64, f64), &str, f64)>)
     for (&k, y) in named.iter().zip(ys) {
         let ((x0, y0), _, speed) = marks[k];
         let s = format!("peak {}", speed_label(speed));
-        let right = x0 + 9.0 + text_width(&s, 12.0) <= p.rect[2] - 2.0;
+        // Clear of every ring beside the label's line, not only its own (two nodes' peaks a
+        // few pixels apart otherwise put one's ring inside the other's label).
+        let beside: Vec<f64> = marks
+            .iter()
+            .filter(|m| (m.0.0 - x0).abs() < 16.0 && (m.0.1 - (y - 4.0)).abs() < 12.0)
+            .map(|m| m.0.0)
+            .chain([x0])
+            .collect();
+        let (lo, hi) = beside
+            .iter()
+            .fold((x0, x0), |(lo, hi), &x| (lo.min(x), hi.max(x)));
+        let right = hi + 9.0 + text_width(&s, 12.0) <= p.rect[2] - 2.0;
         let (x, anchor) = if right {
-            (x0 + 9.0, Anchor::Start)
+            (hi + 9.0, Anchor::Start)
         } else {
-            (x0 - 9.0, Anchor::End)
+            (lo - 9.0, Anchor::End)
         };
         if (y - (y0 - 10.0)).abs() > 6.0 {
             svg.line_px(&[(x0, y0), (x, y - 4.0)], Stroke::solid(INK, 0.8));
