@@ -214,3 +214,30 @@ fn the_rotor_sketch_draws_cones_and_sleeves() {
         println!("{out}");
     }
 }
+
+#[test]
+fn sleeves_and_cones_weigh_what_their_volumes_do() {
+    use whirl::analysis::audit::statics::{Held, static_deflection};
+    // The sleeved rotor by hand, kg: shaft 7810 pi/4 0.05^2 1.5 = 23.00; steel sleeve
+    // 7810 pi/4 (0.09^2 - 0.05^2) 0.45 = 15.46; soft conical sleeve (a frustum)
+    // 7833.4 pi 0.3/12 ((0.12^2 + 0.12 0.1 + 0.1^2) - 3 0.05^2) = 17.78; disk 32.6: 88.84 kg,
+    // 871.2 N at g = 9.8065 m/s^2.
+    let pi = std::f64::consts::PI;
+    let kg = 7810.0 * pi / 4.0 * 0.05f64.powi(2) * 1.5
+        + 7810.0 * pi / 4.0 * (0.09f64.powi(2) - 0.05f64.powi(2)) * 0.45
+        + 7833.4 * pi * 0.3 / 12.0 * ((0.0144 + 0.012 + 0.01) - 3.0 * 0.0025)
+        + 32.6;
+    let rotor: RotorInput = serde_json::from_value(data("sleeved.json")["rotor"].clone()).unwrap();
+    let Rotor::Beam(b) = Rotor::parse(&rotor, &Limits::default()).unwrap() else {
+        unreachable!()
+    };
+    let s = static_deflection(&b, 9.8065, Held::Rigid).unwrap();
+    let reactions: f64 = s.reactions.iter().map(|r| r.y).sum();
+    println!(
+        "weight {} N, reactions {reactions} N, by hand {} N",
+        s.weight,
+        kg * 9.8065
+    );
+    assert!((s.weight - kg * 9.8065).abs() < 1e-9 * s.weight);
+    assert!((reactions - s.weight).abs() < 1e-9 * s.weight);
+}
