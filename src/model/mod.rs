@@ -16,6 +16,7 @@ pub mod point_masses;
 pub mod rotor;
 pub mod shaft;
 pub mod speeds;
+pub mod spline;
 pub mod supports;
 pub mod tagged;
 pub mod task;
