@@ -124,3 +124,41 @@ fn bad_point_masses_and_links_name_their_fields() {
         "{e:?}"
     );
 }
+
+#[test]
+fn a_table_of_300_speeds_is_read_linearly_and_513_are_refused() {
+    // kxx linear in the speed, 1e6 + 2e3 w N/m, tabulated at 300 speeds: at 1234.5 rad/s the
+    // rotor is the one on constant supports with kxx = 3.469e6 N/m (linear interpolation is
+    // exact on a line).
+    let speeds: Vec<f64> = (0..300).map(|i| 10.0 * i as f64).collect();
+    let kxx: Vec<f64> = speeds.iter().map(|w| 1e6 + 2e3 * w).collect();
+    let rotor = |k: Value, w: Value| {
+        json!({"type": "beam",
+            "materials": {"steel": {"young_modulus": 2.11e11, "density": 7810.0, "poisson_ratio": 0.3}},
+            "shaft": [{"length": 1.2, "outer_diameter": 0.05, "material": "steel", "elements": 8}],
+            "disks": [{"node": 4, "mass": 20.0, "polar_inertia": 0.2, "transverse_inertia": 0.1}],
+            "supports": [{"node": 0, "kxx": k, "kyy": 2e6, "cxx": 500.0, "speeds": w},
+                         {"node": 8, "kxx": 2e6, "cxx": 500.0}]})
+    };
+    let w = 1234.5;
+    let poles = |r: Value| {
+        let s = system(&r);
+        let model = DampedModel::build(&s, &damping(json!({"model": "viscous"}), s.n())).unwrap();
+        spectrum(&poles_at(&model, w).unwrap(), true)
+    };
+    let tabulated = poles(rotor(json!(kxx), json!(speeds)));
+    let constant = poles(rotor(json!(1e6 + 2e3 * w), Value::Null));
+    let e = distance(&constant, &tabulated);
+    assert!(e < 1e-11, "{e:.2e}");
+    let mut long = speeds.clone();
+    long.extend((300..513).map(|i| 10.0 * i as f64));
+    let bad = rotor(json!(1e6), json!(long));
+    let input: RotorInput = serde_json::from_value(bad).unwrap();
+    let err = Rotor::parse(&input, &Limits::default()).unwrap_err();
+    assert_eq!(err.errors()[0].path, "rotor.supports[0].speeds");
+    assert!(
+        err.errors()[0].message.contains("2 to 512"),
+        "{:?}",
+        err.errors()
+    );
+}

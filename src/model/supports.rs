@@ -15,7 +15,7 @@ use super::error::{Invalid, loss_factor, non_negative};
 use crate::linalg::c64;
 
 /// Most speeds in one support's table.
-pub const MAX_TABLE: usize = 64;
+pub const MAX_TABLE: usize = 512;
 
 /// A 2x2 real coefficient matrix `[[xx, xy], [yx, yy]]`.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]

@@ -279,7 +279,8 @@ pub struct SupportInput {
     pub myx: Option<Coefficient>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub myy: Option<Coefficient>,
-    /// Spin speeds of a table of coefficients, rad/s, increasing (2 to 64 of them).
+    /// Spin speeds of a table of coefficients, rad/s, increasing (2 to 512 of them; each speed
+    /// keeps a state matrix, counted against the memory budget before anything is built).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub speeds: Option<Vec<f64>>,
 }
