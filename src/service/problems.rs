@@ -35,6 +35,15 @@ pub const KINDS: &[Kind] = &[
         remedy: "Send a JSON document; `detail` gives the line and column of the error.",
     },
     Kind {
+        kind: "malformed-toml",
+        status: 400,
+        title: "Malformed TOML",
+        meaning: "The body of `POST /v1/convert/ross` is not TOML (a syntax error, a key given \
+            twice, or it is not UTF-8).",
+        remedy: "Send the file ROSS's `Rotor.save` wrote, unchanged; `detail` gives the line and \
+            column of the error.",
+    },
+    Kind {
         kind: "invalid-model",
         status: 422,
         title: "Invalid model",
@@ -328,6 +337,7 @@ mod tests {
     fn every_error() -> Vec<ApiError> {
         let all = vec![
             ApiError::Malformed(String::new()),
+            ApiError::MalformedToml(String::new()),
             ApiError::Invalid(crate::model::Invalid::one("x", "y")),
             ApiError::Unsolvable(String::new()),
             ApiError::TooLarge(1),
@@ -348,6 +358,7 @@ mod tests {
         for e in &all {
             match e {
                 ApiError::Malformed(_)
+                | ApiError::MalformedToml(_)
                 | ApiError::Invalid(_)
                 | ApiError::Unsolvable(_)
                 | ApiError::TooLarge(_)
