@@ -495,3 +495,65 @@ async fn too_many_elements_are_refused_before_anything_is_built() {
     .await;
     assert_eq!(status, 413, "{v}");
 }
+
+/// Bearing classes other than BearingElement are tables of coefficients once built: ROSS saves
+/// the coefficients beside the constructor's arguments (here as ROSS 2.3.0 wrote them).
+#[tokio::test]
+async fn other_bearing_classes_convert_from_their_saved_coefficients() {
+    let tapered = toml("tapered").replace("ross_version = \"2.3.0\"", "ross_version = \"2.2.0\"");
+    let text = format!(
+        "{tapered}\n{}",
+        r##"["RollerBearingElement_Roller Bearing 2"]
+alpha = 0.5235987755982988
+color = "#355d7a"
+cxx = [ 3410.2740925075814,]
+cxy = [ 0.0,]
+cyx = [ 0.0,]
+cyy = [ 6959.74304593384,]
+czz = [ 0,]
+fs = 500.0
+kxx = [ 272821927.4006065,]
+kxy = [ 0.0,]
+kyx = [ 0.0,]
+kyy = [ 556779443.6747072,]
+kzz = [ 1e5,]
+l_rollers = 0.03
+mxx = [ 0,]
+mxy = [ 0,]
+myx = [ 0,]
+myy = [ 0,]
+mzz = [ 0,]
+n = 4
+n_rollers = 8
+scale_factor = 1
+tag = "Roller Bearing 2"
+"##
+    );
+    let (status, v) = convert(&text).await;
+    assert_eq!(status, 200, "{v}");
+    let roller = v["rotor"]["supports"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|s| s["node"] == 4)
+        .unwrap()
+        .clone();
+    // (serde_json's default parser may round the last bit: compare to 1e-15.)
+    let want = json!({"node": 4, "kxx": 272821927.4006065, "kyy": 556779443.6747072,
+                      "cxx": 3410.2740925075814, "cyy": 6959.74304593384});
+    assert_eq!(
+        roller.as_object().unwrap().len(),
+        want.as_object().unwrap().len(),
+        "{roller}"
+    );
+    for (k, w) in want.as_object().unwrap() {
+        let (got, w) = (roller[k].as_f64().unwrap(), w.as_f64().unwrap());
+        assert!((got - w).abs() <= 1e-15 * w.abs(), "{k}: {got} against {w}");
+    }
+    let warnings = v["warnings"].to_string();
+    assert!(warnings.contains("ROSS 2.2.0"), "{warnings}");
+    assert!(
+        warnings.contains("RollerBearingElement_Roller Bearing 2: kzz (axial) dropped"),
+        "{warnings}"
+    );
+}
