@@ -48,9 +48,12 @@ pub const KINDS: &[Kind] = &[
         status: 422,
         title: "Invalid model",
         meaning: "The body is JSON but does not describe a valid request: a field is missing, \
-            unknown, of the wrong type, out of its range, or a size exceeds a limit.",
+            unknown, of the wrong type, out of its range, or a size exceeds a limit. For \
+            `POST /v1/convert/ross`: the ROSS file holds an element a Whirl rotor cannot hold, \
+            or a bad value.",
         remedy: "`errors` lists every bad field with its JSON path (`rotor.mass`, \
-            `speeds[3]`) and what is wrong with it; fix those and send it again.",
+            `speeds[3]`), or its TOML table and key with its line, and what is wrong with it; \
+            fix those and send it again.",
     },
     Kind {
         kind: "unsolvable-model",
