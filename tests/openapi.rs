@@ -82,7 +82,10 @@ fn requests(doc: &Value) -> Vec<(String, String, Value)> {
         let Some(body) = item["post"].get("requestBody") else {
             continue;
         };
-        let media = &body["content"]["application/json"];
+        // A body that is not JSON (a ROSS rotor file, `application/toml`) has no schema here.
+        let Some(media) = body["content"].get("application/json") else {
+            continue;
+        };
         let reference = media["schema"]["$ref"]
             .as_str()
             .unwrap_or_else(|| panic!("POST {path}: the request is not a named schema"))

@@ -13,6 +13,8 @@ use crate::model::json::JsonError;
 pub enum ApiError {
     /// 400: the body is not JSON.
     Malformed(String),
+    /// 400: the body is not TOML (`POST /v1/convert/ross`).
+    MalformedToml(String),
     /// 422: the JSON does not describe a valid model (every bad field with its path).
     Invalid(Invalid),
     /// 422: a valid request the analysis cannot carry out on this model.
@@ -88,7 +90,7 @@ impl ApiError {
     /// The HTTP status code of the problem.
     pub fn status(&self) -> u16 {
         match self {
-            ApiError::Malformed(_) => 400,
+            ApiError::Malformed(_) | ApiError::MalformedToml(_) => 400,
             ApiError::Invalid(_) | ApiError::Unsolvable(_) | ApiError::KeyReused(_) => 422,
             ApiError::TooLarge(_) => 413,
             ApiError::Busy | ApiError::TimeLimit(_) | ApiError::Unavailable(_) => 503,
@@ -105,6 +107,7 @@ impl ApiError {
     pub fn problem(&self) -> Problem {
         let (kind, title, detail, errors) = match self {
             ApiError::Malformed(d) => ("malformed-json", "Malformed JSON", d.clone(), vec![]),
+            ApiError::MalformedToml(d) => ("malformed-toml", "Malformed TOML", d.clone(), vec![]),
             ApiError::Invalid(inv) => (
                 "invalid-model",
                 "Invalid model",

@@ -13,6 +13,7 @@ pub mod limits;
 pub mod loads;
 pub mod objects;
 pub mod point_masses;
+pub mod ross;
 pub mod rotor;
 pub mod shaft;
 pub mod speeds;

@@ -1,9 +1,9 @@
-//! The HTTP service: the only layer that knows HTTP. Handlers ([`routes`], [`routes_audit`])
-//! read a body ([`json`]), parse it into a task with one call into `model`, run it ([`task`])
-//! or submit it as a job (`jobs`), and answer; around them the configuration ([`config`]),
-//! the errors as problems ([`error`]), the OpenAPI document ([`openapi`]), the middleware
-//! (here and [`metrics`]), job results streamed from the store ([`results`]) and the
-//! connection handling ([`server`]).
+//! The HTTP service: the only layer that knows HTTP. Handlers ([`routes`], [`routes_audit`],
+//! [`routes_convert`]) read a body ([`json`]), parse it into a task with one call into `model`,
+//! run it ([`task`]) or submit it as a job (`jobs`), and answer; around them the configuration
+//! ([`config`]), the errors as problems ([`error`]), the OpenAPI document ([`openapi`]), the
+//! middleware (here and [`metrics`]), job results streamed from the store ([`results`]) and
+//! the connection handling ([`server`]).
 //!
 //! [`app`] builds the whole router from a [`Config`], so tests drive it in process without a
 //! socket. Requests are validated on the async runtime (cheap); every numerical analysis runs
@@ -22,6 +22,7 @@ pub mod problems;
 pub mod results;
 pub mod routes;
 pub mod routes_audit;
+pub mod routes_convert;
 pub mod routes_jobs;
 pub mod server;
 pub mod slow;
@@ -116,6 +117,7 @@ pub fn router(state: AppState) -> (Router, utoipa::openapi::OpenApi) {
         .routes(utoipa_axum::routes!(routes_audit::level1))
         .routes(utoipa_axum::routes!(routes_audit::frequency_response))
         .routes(utoipa_axum::routes!(routes_audit::report))
+        .routes(utoipa_axum::routes!(routes_convert::convert_ross))
         .routes(utoipa_axum::routes!(
             routes::submit_job,
             routes_jobs::list_jobs

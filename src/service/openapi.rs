@@ -31,6 +31,7 @@ Errors are application/problem+json with the path of every bad field.",
     tags(
         (name = "analyses", description = "Eigenvalue analyses of a rotor model"),
         (name = "audit", description = "The analyses of an API 684 / API 617 rotordynamic audit, and the report"),
+        (name = "models", description = "Rotor models from other programs' files: ROSS's `Rotor.save`"),
         (name = "jobs", description = "Asynchronous analyses: submit, poll, fetch, cancel"),
         (name = "operations", description = "Health, readiness and metrics")
     )

@@ -35,13 +35,25 @@ pub const KINDS: &[Kind] = &[
         remedy: "Send a JSON document; `detail` gives the line and column of the error.",
     },
     Kind {
+        kind: "malformed-toml",
+        status: 400,
+        title: "Malformed TOML",
+        meaning: "The body of `POST /v1/convert/ross` is not TOML (a syntax error, a key given \
+            twice, or it is not UTF-8).",
+        remedy: "Send the file ROSS's `Rotor.save` wrote, unchanged; `detail` gives the line and \
+            column of the error.",
+    },
+    Kind {
         kind: "invalid-model",
         status: 422,
         title: "Invalid model",
         meaning: "The body is JSON but does not describe a valid request: a field is missing, \
-            unknown, of the wrong type, out of its range, or a size exceeds a limit.",
+            unknown, of the wrong type, out of its range, or a size exceeds a limit. For \
+            `POST /v1/convert/ross`: the ROSS file holds an element a Whirl rotor cannot hold, \
+            or a bad value.",
         remedy: "`errors` lists every bad field with its JSON path (`rotor.mass`, \
-            `speeds[3]`) and what is wrong with it; fix those and send it again.",
+            `speeds[3]`), or its TOML table and key with its line, and what is wrong with it; \
+            fix those and send it again.",
     },
     Kind {
         kind: "unsolvable-model",
@@ -328,6 +340,7 @@ mod tests {
     fn every_error() -> Vec<ApiError> {
         let all = vec![
             ApiError::Malformed(String::new()),
+            ApiError::MalformedToml(String::new()),
             ApiError::Invalid(crate::model::Invalid::one("x", "y")),
             ApiError::Unsolvable(String::new()),
             ApiError::TooLarge(1),
@@ -348,6 +361,7 @@ mod tests {
         for e in &all {
             match e {
                 ApiError::Malformed(_)
+                | ApiError::MalformedToml(_)
                 | ApiError::Invalid(_)
                 | ApiError::Unsolvable(_)
                 | ApiError::TooLarge(_)
