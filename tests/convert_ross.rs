@@ -126,7 +126,7 @@ async fn converted(name: &str, warnings: &[&str]) -> Value {
 /// Whirl's poles of the converted rotor at each reference speed against ROSS's lateral
 /// eigenvalues. ROSS's real system has each of Whirl's poles and its conjugate.
 async fn poles_match(name: &str, rotor: &Value) {
-    let d = reference(name);
+    let d = expected(name);
     let mut worst: f64 = 0.0;
     for case in d["poles"].as_array().unwrap() {
         let speed = case["speed"].as_f64().unwrap();
@@ -171,7 +171,7 @@ async fn poles_match(name: &str, rotor: &Value) {
 
 /// Whirl's unbalance response of the converted rotor against ROSS's X and Y.
 async fn unbalance_match(name: &str, rotor: &Value) {
-    let d = reference(name);
+    let d = expected(name);
     let u = &d["unbalance_response"];
     let nodes: Vec<Value> = u["nodes"]
         .as_array()
@@ -228,6 +228,17 @@ async fn unbalance_match(name: &str, rotor: &Value) {
     println!("{name}: unbalance response within {worst:.2e} of ROSS's peak");
 }
 
+/// What Whirl must reproduce: ROSS's own results, or for tabulated supports ROSS's rotor with
+/// them frozen at the linear interpolation Whirl applies (`linear`: ROSS's smoothing spline
+/// differs between and beyond the table speeds).
+fn expected(name: &str) -> Value {
+    let d = reference(name);
+    match d.get("linear") {
+        Some(l) => l.clone(),
+        None => d,
+    }
+}
+
 async fn machine(name: &str, warnings: &[&str]) -> Value {
     let rotor = converted(name, warnings).await;
     poles_match(name, &rotor).await;
@@ -243,7 +254,7 @@ fn count(rotor: &Value, key: &str) -> usize {
 async fn rosss_compressor_example_with_its_sleeves_and_tables() {
     let rotor = machine(
         "compressor_example",
-        &["interpolation: \"ross\"", "smoothing spline"],
+        &["linear between their speeds", "smoothing spline"],
     )
     .await;
     // 91 shaft elements on 55 nodes: 36 sleeves; 7 disks; 2 bearings, 12 seals.
@@ -259,7 +270,7 @@ async fn rosss_compressor_example_with_its_sleeves_and_tables() {
     assert_eq!(count(&rotor, "supports"), 2);
     assert_eq!(count(&rotor, "seals"), 12);
     for s in rotor["seals"].as_array().unwrap() {
-        assert_eq!(s["interpolation"], "ross", "{s}");
+        assert!(s["speeds"].is_array(), "{s}");
     }
     // The sleeves' material: E = G_s = 1 psi, so Poisson = -0.5.
     let materials = rotor["materials"].as_object().unwrap();
@@ -315,9 +326,11 @@ async fn a_rotor_under_axial_force_and_torque_with_proportional_damping() {
     let shaft = rotor["shaft"].as_array().unwrap();
     for s in shaft {
         assert_eq!(s["axial_force"], -1.5e4, "{s}");
+        // The element with the torque has no beta (see convert.py).
+        let beta = if s.get("torque").is_some() { 0.0 } else { 2e-5 };
         assert_eq!(
             s["rayleigh_damping"],
-            json!({"alpha": 1.5, "beta": 2e-5, "frame": "nonrotating"})
+            json!({"alpha": 1.5, "beta": beta, "frame": "nonrotating"})
         );
     }
     let torque: Vec<&Value> = shaft.iter().filter(|s| s.get("torque").is_some()).collect();
@@ -327,10 +340,9 @@ async fn a_rotor_under_axial_force_and_torque_with_proportional_damping() {
 
 #[tokio::test]
 async fn a_bearing_table_of_70_speeds_and_a_tabulated_seal() {
-    let rotor = machine("table70", &["interpolation: \"ross\""]).await;
+    let rotor = machine("table70", &["linear between their speeds"]).await;
     for s in rotor["supports"].as_array().unwrap() {
         assert_eq!(s["speeds"].as_array().unwrap().len(), 70);
-        assert_eq!(s["interpolation"], "ross");
     }
     assert_eq!(rotor["seals"][0]["speeds"], json!([300.0, 1500.0, 3000.0]));
 }

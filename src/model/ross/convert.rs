@@ -17,9 +17,10 @@
 //!   become `rayleigh_damping` in the nonrotating frame, as ROSS adds `alpha M + beta K` to the
 //!   damping matrix with no circulatory term.
 //! - Bearings and seals: each coefficient one number when constant, else an array over
-//!   `speeds` (ROSS's `frequency`) with `interpolation: "ross"` (interp1d for 2 or 3 speeds, the
-//!   smoothing spline for 4 or more, extrapolating as ROSS does). `SealElement` and its
-//!   subclasses go to `seals`.
+//!   `speeds` (ROSS's `frequency`), read linearly and held at the ends as every Whirl table
+//!   (ROSS's interp1d / smoothing spline, extrapolating, is reproduced by `model::spline` but
+//!   not yet used by the analyses: a warning says so). `SealElement` and its subclasses go to
+//!   `seals`.
 //! - Point masses: the shaft's nodes or nodes off it, numbered as ROSS numbers them. Whirl's
 //!   point mass is isotropic: `mx != my` is `min(mx, my)` plus a support of mass coefficients
 //!   only (`mxx`, `myy`) on the node, exactly ROSS's mass matrix.
@@ -151,6 +152,20 @@ pub fn to_whirl(file: &RossFile, limits: &Limits) -> Result<Converted, Invalid> 
              damping of the shaft's material turns with it (`frame: \"rotating\"`)"
                 .into(),
         );
+    }
+    let both: Vec<String> = file
+        .shaft
+        .iter()
+        .filter(|e| e.beta != 0.0 && e.torque != 0.0)
+        .map(|e| e.table.clone())
+        .collect();
+    if !both.is_empty() {
+        warnings.push(format!(
+            "{}: ROSS's beta multiplies the element's whole stiffness, its torque's geometric \
+             (circulatory) stiffness included; Whirl's `beta K` leaves the torque's out, so the \
+             damping differs by beta T / L there",
+            both.join(", ")
+        ));
     }
     if file
         .shaft
@@ -315,10 +330,12 @@ pub fn to_whirl(file: &RossFile, limits: &Limits) -> Result<Converted, Invalid> 
     supports.extend(mass_supports);
     if tables {
         warnings.push(
-            "tabulated coefficients use ROSS's interpolation (`interpolation: \"ross\"`): \
-             scipy's interp1d for 2 or 3 speeds, its smoothing spline (s = number of speeds) \
-             for 4 or more, which need not pass through the table's values, and both \
-             extrapolate outside the table as ROSS does"
+            "tabulated coefficients are converted as tables, linear between their speeds and \
+             held at the end values outside (Whirl's interpolation); ROSS interpolates them \
+             with scipy's interp1d for 2 or 3 speeds and its smoothing spline (s = number of \
+             speeds) for 4 or more, which need not pass through the table's values, and \
+             extrapolates: between and beyond the table speeds the coefficients, and the \
+             poles, differ from ROSS's"
                 .into(),
         );
     }
@@ -431,7 +448,6 @@ fn support(b: &Bearing, warnings: &mut Vec<String>) -> (Value, bool) {
     }
     if tabulated {
         s.insert("speeds".into(), json!(b.speeds));
-        s.insert("interpolation".into(), json!("ross"));
     }
     let axial: Vec<&str> = COEFFICIENTS[12..]
         .iter()

@@ -183,6 +183,50 @@ def unbalance(r, node, amount, phase, speeds, nodes, checks, native=True):
             "nodes": [{"node": n, "x": out[n]["x"], "y": out[n]["y"]} for n in nodes]}
 
 
+COEFFS = ["kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy", "mxx", "mxy", "myx", "myy"]
+
+
+def frozen(r, w):
+    """r with each tabulated support constant at numpy.interp(w, frequency, values): linear
+    between the table's speeds and held at its ends, Whirl's default interpolation (ROSS's own
+    is a smoothing spline that misses the table points and extrapolates)."""
+    bearings = []
+    for b in r.bearing_elements:
+        if b.frequency is None or len(np.atleast_1d(b.frequency)) < 2:
+            bearings.append(b)
+            continue
+        c = {}
+        for k in COEFFS:
+            v = np.atleast_1d(np.asarray(getattr(b, k), dtype=float))
+            c[k] = float(v[0]) if len(v) == 1 else float(np.interp(w, b.frequency, v))
+        bearings.append(rs.BearingElement(n=b.n, n_link=b.n_link, **c))
+    return rs.Rotor(r.shaft_elements, r.disk_elements, bearings,
+                    point_mass_elements=r.point_mass_elements)
+
+
+def linear(r, pole_speeds, node, amount, phase, speeds, nodes, checks):
+    """Poles and unbalance response with Whirl's linear rule (`frozen` at each speed)."""
+    table = [poles(frozen(r, w), w, checks, native=False) for w in pole_speeds]
+    resp = {n: {"x": [], "y": []} for n in nodes}
+    for w in speeds:
+        own = own_unbalance(frozen(r, w), w, node, amount, phase, nodes, checks)
+        for n in nodes:
+            resp[n]["x"].append(cplx(own[n][0]))
+            resp[n]["y"].append(cplx(own[n][1]))
+    for w in pole_speeds[:1]:
+        f = frozen(r, w)
+        # The rotor rebuilt around the frozen supports is the same rotor (its M and G).
+        checks["frozen_structure"] = max(
+            float(np.max(np.abs(f.M(w) - r.M(w))) / np.max(np.abs(r.M(w)))),
+            float(np.max(np.abs(f.G() - r.G())) / np.max(np.abs(r.G()))))
+    return {"poles": table,
+            "unbalance_response": {
+                "call": "(K - W^2 M + i W (C + W G)) X = F, supports frozen at numpy.interp(W)",
+                "unbalances": [{"node": node, "amount": amount, "phase": phase}],
+                "speeds": [float(w) for w in speeds],
+                "nodes": [{"node": n, "x": resp[n]["x"], "y": resp[n]["y"]} for n in nodes]}}
+
+
 def same_matrices(r1, r2, speeds):
     worst = 0.0
     for w in speeds:
@@ -233,8 +277,11 @@ def tapered():
 
 
 def axial_rayleigh():
+    # Element 6 carries the torque and no beta: ROSS's beta multiplies the whole element
+    # stiffness, torque's geometric term included, which Whirl's proportional damping leaves out.
     shaft = [rs.ShaftElement(L=0.12, idl=0.0, odl=0.06, material=STEEL, axial_force=-1.5e4,
-                             torque=1.0e3 if i == 6 else 0.0, alpha=1.5, beta=2.0e-5)
+                             torque=1.0e3 if i == 6 else 0.0, alpha=1.5,
+                             beta=0.0 if i == 6 else 2.0e-5)
              for i in range(10)]
     disks = [rs.DiskElement(n=4, m=25.0, Id=0.18, Ip=0.35)]
     bearings = [rs.BearingElement(n=0, kxx=8.0e6, kyy=1.0e7, cxx=1.0e3, cyy=1.2e3),
@@ -332,6 +379,12 @@ def main(only=None):
             unbalance(r0, node, amount, phase, speeds, [n for n in nodes if n != 3], method,
                       True)
             checks["method"] = {k: method[k] for k in ("run_modal", "unbalance")}
+        if name in ("compressor_example", "table70"):
+            checks_linear = {}
+            linear_refs = linear(r, pole_speeds, node, amount, phase, speeds, nodes, checks_linear)
+            checks["linear"] = checks_linear
+        else:
+            linear_refs = None
         data = {
             "case": name,
             "ross_version": rs.__version__,
@@ -346,6 +399,8 @@ def main(only=None):
             "unbalance_response": resp,
             "checks": checks,
         }
+        if linear_refs is not None:
+            data["linear"] = linear_refs
         path = OUT / f"{name}.json"
         path.write_text(json.dumps(data, indent=1) + "\n")
         print(f"{name}: {len(table[0]['eigenvalues'])} poles per speed, checks {checks}, "
