@@ -105,41 +105,39 @@ fn a_conical_mesh_and_a_fine_stepped_mesh_converge_to_the_same_frequencies() {
 
 #[test]
 fn bad_sections_and_sleeves_name_their_fields() {
-    let rotor = json!({"type": "beam",
-        "materials": {"steel": {"young_modulus": 2.11e11, "density": 7810.0, "poisson_ratio": 0.3}},
-        "shaft": [{"length": 1.0, "outer_diameter": 0.05, "inner_diameter": 0.01,
-                   "inner_diameter_right": 0.06, "outer_diameter_right": 0.055,
-                   "material": "steel", "elements": 4,
-                   "rayleigh_damping": {"alpha": -1.0}}],
-        "sleeves": [{"node": 4, "outer_diameter": 0.08, "material": "steel"},
-                    {"node": 1, "elements": 9, "outer_diameter": 0.08, "material": "gold"}],
-        "supports": [{"node": 0, "stiffness": 1e7}]});
-    let input: RotorInput = serde_json::from_value(rotor).unwrap();
-    let err = Rotor::parse(&input, &Limits::default()).unwrap_err();
-    let paths: Vec<&str> = err.errors().iter().map(|e| e.path.as_str()).collect();
-    for p in [
-        "rotor.shaft[0].inner_diameter_right",
-        "rotor.shaft[0].rayleigh_damping.alpha",
-    ] {
-        assert!(paths.contains(&p), "{p} missing from {paths:?}");
-    }
-    // With the shaft fixed, the sleeves' own errors.
-    let rotor = json!({"type": "beam",
-        "materials": {"steel": {"young_modulus": 2.11e11, "density": 7810.0, "poisson_ratio": 0.3}},
-        "shaft": [{"length": 1.0, "outer_diameter": 0.05, "material": "steel", "elements": 4}],
-        "sleeves": [{"node": 4, "outer_diameter": 0.08, "material": "steel"},
-                    {"node": 1, "elements": 9, "outer_diameter": 0.08, "material": "gold"}],
-        "supports": [{"node": 0, "stiffness": 1e7}]});
-    let input: RotorInput = serde_json::from_value(rotor).unwrap();
-    let err = Rotor::parse(&input, &Limits::default()).unwrap_err();
-    let paths: Vec<&str> = err.errors().iter().map(|e| e.path.as_str()).collect();
-    for p in [
-        "rotor.sleeves[0].node",
-        "rotor.sleeves[1].elements",
-        "rotor.sleeves[1].material",
-    ] {
-        assert!(paths.contains(&p), "{p} missing from {paths:?}");
-    }
+    // Each path must be among the errors of the rotor on `shaft` with two bad sleeves.
+    let named = |shaft: Value, expected: &[&str]| {
+        let rotor = json!({"type": "beam",
+            "materials": {"steel": {"young_modulus": 2.11e11, "density": 7810.0, "poisson_ratio": 0.3}},
+            "shaft": [shaft],
+            "sleeves": [{"node": 4, "outer_diameter": 0.08, "material": "steel"},
+                        {"node": 1, "elements": 9, "outer_diameter": 0.08, "material": "gold"}],
+            "supports": [{"node": 0, "stiffness": 1e7}]});
+        let input: RotorInput = serde_json::from_value(rotor).unwrap();
+        let err = Rotor::parse(&input, &Limits::default()).unwrap_err();
+        let paths: Vec<&str> = err.errors().iter().map(|e| e.path.as_str()).collect();
+        for p in expected {
+            assert!(paths.contains(p), "{p} missing from {paths:?}");
+        }
+    };
+    named(
+        json!({"length": 1.0, "outer_diameter": 0.05, "inner_diameter": 0.01,
+               "inner_diameter_right": 0.06, "outer_diameter_right": 0.055,
+               "material": "steel", "elements": 4, "rayleigh_damping": {"alpha": -1.0}}),
+        &[
+            "rotor.shaft[0].inner_diameter_right",
+            "rotor.shaft[0].rayleigh_damping.alpha",
+        ],
+    );
+    // With the shaft valid, the sleeves' own errors (their lengths come from its elements).
+    named(
+        json!({"length": 1.0, "outer_diameter": 0.05, "material": "steel", "elements": 4}),
+        &[
+            "rotor.sleeves[0].node",
+            "rotor.sleeves[1].elements",
+            "rotor.sleeves[1].material",
+        ],
+    );
 }
 
 /// The rotor with proportional damping `beta K` on its shaft in `frame`, on undamped supports.

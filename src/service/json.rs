@@ -37,37 +37,52 @@ impl<S: Send + Sync, T: DeserializeOwned> FromRequest<S> for ApiJson<T> {
     type Rejection = ApiError;
 
     async fn from_request(req: Request, state: &S) -> Result<Self, ApiError> {
-        let limits = req
-            .extensions()
-            .get::<BodyLimits>()
-            .copied()
-            .unwrap_or(BodyLimits {
-                max_bytes: 0,
-                timeout: Duration::from_secs(30),
-            });
-        let ct = req
-            .headers()
-            .get(header::CONTENT_TYPE)
-            .and_then(|v| v.to_str().ok());
-        if !is_json(ct) {
-            return Err(ApiError::UnsupportedMediaType(format!(
-                "the body must be JSON, sent with `Content-Type: application/json` (got {}); \
-                 with curl, use --json or -H 'content-type: application/json'",
-                ct.map_or("none".to_string(), |c| format!("`{c}`"))
-            )));
-        }
-        let read = Bytes::from_request(req, state);
-        let bytes = match tokio::time::timeout(limits.timeout, read).await {
-            Err(_) => return Err(ApiError::RequestTimeout(limits.timeout)),
-            Ok(r) => r.map_err(|e| {
-                if e.status() == StatusCode::PAYLOAD_TOO_LARGE {
-                    ApiError::TooLarge(limits.max_bytes)
-                } else {
-                    ApiError::Malformed(e.body_text())
-                }
-            })?,
-        };
+        let bytes = limited_body(req, state, ApiError::Malformed, |ct| {
+            is_json(ct).then_some(()).ok_or_else(|| {
+                ApiError::UnsupportedMediaType(format!(
+                    "the body must be JSON, sent with `Content-Type: application/json` (got {}); \
+                     with curl, use --json or -H 'content-type: application/json'",
+                    ct.map_or("none".to_string(), |c| format!("`{c}`"))
+                ))
+            })
+        })
+        .await?;
         Ok(parse(&bytes).map(ApiJson)?)
+    }
+}
+
+/// A request's body within the [`BodyLimits`]: `media` refuses a wrong `Content-Type` (before
+/// anything is read), then 413 past the size limit, 408 past the time limit, and `malformed`
+/// for a body that could not be read.
+pub async fn limited_body<S: Send + Sync>(
+    req: Request,
+    state: &S,
+    malformed: fn(String) -> ApiError,
+    media: impl FnOnce(Option<&str>) -> Result<(), ApiError>,
+) -> Result<Bytes, ApiError> {
+    let limits = req
+        .extensions()
+        .get::<BodyLimits>()
+        .copied()
+        .unwrap_or(BodyLimits {
+            max_bytes: 0,
+            timeout: Duration::from_secs(30),
+        });
+    let ct = req
+        .headers()
+        .get(header::CONTENT_TYPE)
+        .and_then(|v| v.to_str().ok());
+    media(ct)?;
+    let read = Bytes::from_request(req, state);
+    match tokio::time::timeout(limits.timeout, read).await {
+        Err(_) => Err(ApiError::RequestTimeout(limits.timeout)),
+        Ok(r) => r.map_err(|e| {
+            if e.status() == StatusCode::PAYLOAD_TOO_LARGE {
+                ApiError::TooLarge(limits.max_bytes)
+            } else {
+                malformed(e.body_text())
+            }
+        }),
     }
 }
 

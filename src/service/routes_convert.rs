@@ -3,16 +3,12 @@
 //! anything is built), so it needs no worker of the pool: it runs on a blocking thread of the
 //! runtime (an 8 MB file, the default body limit, takes about 0.3 s).
 
-use std::time::Duration;
-
 use axum::Json;
-use axum::body::Bytes;
 use axum::extract::{FromRequest, Request, State};
-use axum::http::{StatusCode, header};
 
 use super::AppState;
 use super::error::ApiError;
-use super::json::BodyLimits;
+use super::json::limited_body;
 use crate::model::api::Problem;
 use crate::model::ross::{self, ConvertError, ConvertRossResponse};
 
@@ -34,36 +30,16 @@ impl<S: Send + Sync> FromRequest<S> for TomlText {
     type Rejection = ApiError;
 
     async fn from_request(req: Request, state: &S) -> Result<Self, ApiError> {
-        let limits = req
-            .extensions()
-            .get::<BodyLimits>()
-            .copied()
-            .unwrap_or(BodyLimits {
-                max_bytes: 0,
-                timeout: Duration::from_secs(30),
-            });
-        let ct = req
-            .headers()
-            .get(header::CONTENT_TYPE)
-            .and_then(|v| v.to_str().ok());
-        if !is_toml(ct) {
-            return Err(ApiError::UnsupportedMediaType(format!(
-                "the body must be a ROSS rotor file, sent with `Content-Type: {TOML}` (got {}); \
-                 with curl, use --data-binary @rotor.toml -H 'Content-Type: {TOML}'",
-                ct.map_or("none".to_string(), |c| format!("`{c}`"))
-            )));
-        }
-        let read = Bytes::from_request(req, state);
-        let bytes = match tokio::time::timeout(limits.timeout, read).await {
-            Err(_) => return Err(ApiError::RequestTimeout(limits.timeout)),
-            Ok(r) => r.map_err(|e| {
-                if e.status() == StatusCode::PAYLOAD_TOO_LARGE {
-                    ApiError::TooLarge(limits.max_bytes)
-                } else {
-                    ApiError::MalformedToml(e.body_text())
-                }
-            })?,
-        };
+        let bytes = limited_body(req, state, ApiError::MalformedToml, |ct| {
+            is_toml(ct).then_some(()).ok_or_else(|| {
+                ApiError::UnsupportedMediaType(format!(
+                    "the body must be a ROSS rotor file, sent with `Content-Type: {TOML}` (got \
+                     {}); with curl, use --data-binary @rotor.toml -H 'Content-Type: {TOML}'",
+                    ct.map_or("none".to_string(), |c| format!("`{c}`"))
+                ))
+            })
+        })
+        .await?;
         let text = String::from_utf8(bytes.to_vec()).map_err(|e| {
             let (line, column) = ross::position(
                 &String::from_utf8_lossy(&bytes),
