@@ -1,5 +1,6 @@
 //! Campbell branches under every damping model against `/v1/modal` at every speed of the sweep:
-//! on isotropic, anisotropic, cross-coupled, tabulated and sealed rotors of our own, each pole
+//! on isotropic, anisotropic, cross-coupled, tabulated (linear and ROSS's) and sealed rotors of
+//! our own, each pole
 //! the modal analysis returns below the bound is on a branch (a branch is a mode: the lower
 //! twin of an anisotropic pair turns backward above rest and stays one branch), each branch
 //! value is such a pole, and only the hysteretic model leaves values undefined (where it has no
@@ -48,6 +49,17 @@ fn rotors() -> Vec<(&'static str, Value, f64, f64)> {
         {"node": 10, "speeds": [200, 600, 1000, 1500, 2500],
          "kxx": [1.5e6, 1.8e6, 2.1e6, 2.6e6, 3.2e6], "kyy": [1.2e6, 1.5e6, 1.9e6, 2.4e6, 3e6],
          "cxx": [500, 450, 400, 350, 300], "cyy": [600, 550, 500, 450, 400]}]);
+    // The tabulated bearings read with ROSS's interpolation (splines, extrapolated below
+    // 200 rad/s), and a seal of 3 speeds (quadratic).
+    let mut ross = shaft(10, STEEL_LOSS);
+    ross["supports"] = tab["supports"].clone();
+    for s in ross["supports"].as_array_mut().unwrap() {
+        s["interpolation"] = json!("ross");
+    }
+    ross["seals"] = json!([
+        {"node": 7, "speeds": [300, 1200, 2400], "kxx": [2e5, 5e5, 6e5], "kyy": [2e5, 5e5, 6e5],
+         "kxy": [1e5, 3e5, 8e5], "kyx": [-1e5, -3e5, -8e5], "cxx": 300, "cyy": 300,
+         "interpolation": "ross"}]);
     let mut seal = shaft(10, STEEL_LOSS);
     seal["supports"] = json!([
         {"node": 0, "stiffness": 5e6, "damping": 800},
@@ -60,6 +72,7 @@ fn rotors() -> Vec<(&'static str, Value, f64, f64)> {
         ("anisotropic", aniso, 1500.0, 1500.0),
         ("cross-coupled", cross, 3000.0, 3500.0),
         ("tabulated", tab, 3000.0, 3500.0),
+        ("ross-tabulated", ross, 3000.0, 3500.0),
         ("sealed", seal, 3000.0, 3500.0),
     ]
 }

@@ -193,6 +193,31 @@ fn a_run_up_on_tabulated_fluid_film_bearings_with_a_blade_loss_and_a_shock_match
 }
 
 #[test]
+fn a_run_up_on_bearings_read_with_rosss_interpolation_matches_tr_bdf2() {
+    // The same bearings on ROSS's splines (extrapolated below 200 rad/s): the supports'
+    // change over a stage is the schedule's (damping/schedule.rs), in the stage's modal basis
+    // for the exponential integrator, on the state matrix for TR-BDF2.
+    let mut rotor = example("fluid-film.unbalance-response.json")["rotor"].clone();
+    for s in rotor["supports"].as_array_mut().unwrap() {
+        s["interpolation"] = serde_json::json!("ross");
+    }
+    let s = system(rotor);
+    let law = SpeedLaw::Profile(pwl(&[[0.0, 100.0], [0.3, 1800.0], [0.4, 1800.0]]));
+    let sp = TimeSpec {
+        nodes: vec![0, 5, 10],
+        ..spec(law, vec![unbalance(5, 1e-4, 0.0)], vec![], 0.4)
+    };
+    let (dev, implicit, e) = against_references(&s, &DampingModel::Viscous, &sp, 1e-8);
+    eprintln!(
+        "fluid film run-up, ROSS's interpolation: {} states, {} steps, {dev:.1e} of the peak \
+         from itself at 1e-10, which is {implicit:.1e} from TR-BDF2 at 1e-8",
+        e.states, e.steps
+    );
+    assert!(dev < 2e-6, "{dev:e}");
+    assert!(implicit < 1e-4, "{implicit:e}");
+}
+
+#[test]
 fn coarse_output_intervals_give_the_same_samples() {
     // 0 -> 450 rad/s in 0.4 s, sampled every 1 ms and every 0.1 s: the stages cut the long
     // intervals as they cut the speed, so the common samples agree to the tolerance.

@@ -188,6 +188,7 @@ pub fn reduction(d: &crate::analysis::reduction::Reduction) -> api::ReductionInf
         states: d.states,
         full_states: d.full_states,
         checked_speed: d.checked_speed,
+        checked_speeds: d.checked_speeds.clone(),
         max_relative_error: d.max_relative_error,
     }
 }

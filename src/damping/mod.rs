@@ -18,13 +18,16 @@ pub mod equivalent;
 pub mod hysteretic;
 pub mod nonviscous;
 pub mod report;
+pub mod schedule;
 pub mod state;
 
 use crate::fem::modal::{HermitianBasis, ModalBasis, ModalError};
 use crate::linalg::{CMat, LinalgError, RMat};
 use crate::model::damping::DampingModel;
 use crate::system::{Layout, Realized, RotorSystem};
+pub use schedule::Schedule;
 pub use state::{Branches, SecondOrder, StateModel};
+use std::sync::Arc;
 
 /// A rotor under one damping model, ready for eigenvalue analyses.
 #[derive(Debug, Clone)]
@@ -165,9 +168,17 @@ impl DampedModel {
             };
             Ok((all, xy_all))
         };
-        // One realization per speed of the supports' tables (one in all when constant).
+        // One realization per speed of the supports' tables (one in all when constant), or,
+        // with supports on ROSS's curves, one scheduled (`schedule.rs`).
+        let scheduled = Schedule::applies(system);
         let table = system.table_speeds();
-        let points = if table.is_empty() { vec![0.0] } else { table };
+        let points = if scheduled {
+            vec![Schedule::reference_speed(system)]
+        } else if table.is_empty() {
+            vec![0.0]
+        } else {
+            table
+        };
         let tabulate = |models: Vec<StateModel>| -> StateModel {
             if models.len() == 1 {
                 models.into_iter().next().expect("one")
@@ -179,9 +190,17 @@ impl DampedModel {
         let kind = |bases: Option<&Bases>| -> Result<ModelKind, DampingError> {
             let realized: Vec<Realized> = points.iter().map(|&w| Realized::at(system, w)).collect();
             let size = realized[0].size();
+            let schedule = match scheduled {
+                true => Some(Arc::new(Schedule::new(system, &realized[0], points[0])?)),
+                false => None,
+            };
+            let on_schedule = |m: StateModel| match &schedule {
+                Some(s) => m.scheduled(s.clone()),
+                None => m,
+            };
             let bases = || bases.expect("the equivalent and nonviscous models have a basis");
             let linear = |models: Result<Vec<StateModel>, _>| -> Result<ModelKind, DampingError> {
-                Ok(ModelKind::Linear(Box::new(tabulate(models?))))
+                Ok(ModelKind::Linear(Box::new(on_schedule(tabulate(models?)))))
             };
             match model {
                 DampingModel::Viscous => linear(
@@ -202,9 +221,9 @@ impl DampedModel {
                                 nonrotating: first.nonrotating,
                                 rotating: first.rotating,
                                 counter: first.counter,
-                                model: tabulate(
+                                model: on_schedule(tabulate(
                                     per_point.iter().map(|p| p[k].model.clone()).collect(),
-                                ),
+                                )),
                             }
                         })
                         .collect();

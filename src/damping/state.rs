@@ -15,8 +15,10 @@
 //! `v = x'` the state `z = [v, x, y]` has `2n + p` entries, not `2(n + p)`, and
 //! `z' = A(Omega) z` with `A = A0 + Omega A1` (`D = D0 + Omega D1`, `K = K0 + Omega K1`).
 
+use super::schedule::Schedule;
 use crate::linalg::{self, CMat, LinalgError, RMat, c64};
 use crate::system::Realized;
+use std::sync::Arc;
 
 /// `M x'' + (D0 + Omega D1) x' + (K0 + Omega K1) x = F`, complex coefficients.
 #[derive(Debug, Clone)]
@@ -137,7 +139,8 @@ fn real(x: f64) -> c64 {
 /// `z' = (A0(Omega) + Omega A1(Omega)) z`, `z = [v, x, y]`. `A0` and `A1` are constant, or,
 /// for supports tabulated against speed, given at the table's speeds and linear between
 /// them (held outside): exact when the mass coefficients are constant, since every other
-/// coefficient enters the state matrix linearly.
+/// coefficient enters the state matrix linearly. With supports on ROSS's curves, `A0` is
+/// built once and the supports' change from it is a [`Schedule`].
 #[derive(Debug, Clone)]
 pub struct StateModel {
     /// Speeds of the table (one entry, ignored, for constant coefficients).
@@ -147,6 +150,7 @@ pub struct StateModel {
     n: usize,
     branches: Branches,
     stiffness: CMat,
+    schedule: Option<Arc<Schedule>>,
 }
 
 impl StateModel {
@@ -201,7 +205,21 @@ impl StateModel {
             n,
             branches: br.clone(),
             stiffness: so.stiffness.clone(),
+            schedule: None,
         })
+    }
+
+    /// The model with its tabulated supports scheduled (built at the schedule's reference
+    /// speed, one point).
+    pub fn scheduled(mut self, schedule: Arc<Schedule>) -> Self {
+        debug_assert_eq!(self.points.len(), 1);
+        self.schedule = Some(schedule);
+        self
+    }
+
+    /// The schedule of its supports on ROSS's curves, if any.
+    pub fn schedule(&self) -> Option<&Schedule> {
+        self.schedule.as_deref()
     }
 
     /// The models at the speeds of a table, as one (their structure must agree).
@@ -239,12 +257,13 @@ impl StateModel {
             stiffness: CMat::from_fn(self.n, self.n, |i, j| {
                 (self.stiffness[(i, j)] + other.stiffness[(i, j)]) * 0.5
             }),
+            schedule: self.schedule.clone(),
         }
     }
 
     /// Whether the model changes with the speed beyond `Omega A1`.
     pub fn tabulated(&self) -> bool {
-        self.points.len() > 1
+        self.points.len() > 1 || self.schedule.is_some()
     }
 
     /// The table's segment and weight at `speed`: `A = (1 - t) A[k] + t A[k + 1]`.
@@ -274,21 +293,26 @@ impl StateModel {
     pub fn at(&self, speed: f64) -> CMat {
         let segment = self.segment(speed);
         let size = self.size();
-        CMat::from_fn(size, size, |i, j| self.entry(segment, speed, i, j))
+        let mut a = CMat::from_fn(size, size, |i, j| self.entry(segment, speed, i, j));
+        if let Some(s) = &self.schedule {
+            s.add_to(&mut a, speed);
+        }
+        a
     }
 
     /// The speeds where the table's interpolation changes segment (none for constant
-    /// coefficients).
-    pub fn table_speeds(&self) -> &[f64] {
-        if self.points.len() > 1 {
-            &self.points
-        } else {
-            &[]
+    /// coefficients and ROSS's curves).
+    pub fn table_speeds(&self) -> Vec<f64> {
+        match &self.schedule {
+            Some(s) => s.breaks(),
+            None if self.points.len() > 1 => self.points.clone(),
+            None => vec![],
         }
     }
 
     /// `(F1, F2)` of `A(w) = F0 + w F1 + w^2 F2` on the table segment holding `speed` (affine
-    /// outside the table and for constant coefficients: `F2 = None`). Within a segment
+    /// outside the table and for constant coefficients: `F2 = None`), the schedule's part
+    /// aside (see [`Self::schedule`]). Within a segment
     /// `A = (1 - t)(a0_k + w a1_k) + t (a0_k+1 + w a1_k+1)`, `t = (w - w_k) / (w_k+1 - w_k)`,
     /// so `A(w) - A(u) = (w - u) F1 + (w^2 - u^2) F2` for `w`, `u` in the segment.
     pub fn speed_terms(&self, speed: f64) -> (CMat, Option<CMat>) {
@@ -321,6 +345,9 @@ impl StateModel {
         if t != 0.0 {
             add(&self.a0[k + 1], t);
             add(&self.a1[k + 1], speed * t);
+        }
+        if let Some(s) = &self.schedule {
+            s.apply_add(speed, x, &mut y);
         }
         y
     }
@@ -385,7 +412,12 @@ impl StateModel {
     pub fn shift_invert(&self, speed: f64, sigma: c64) -> ShiftInvert {
         let (n, p) = (self.n, self.p());
         let segment = self.segment(speed);
-        let e = |i: usize, j: usize| self.entry(segment, speed, i, j);
+        // With a schedule, the entries of the matrix it changes.
+        let scheduled = self.schedule.as_ref().map(|_| self.at(speed));
+        let e = |i: usize, j: usize| match &scheduled {
+            Some(a) => a[(i, j)],
+            None => self.entry(segment, speed, i, j),
+        };
         let avv = CMat::from_fn(n, n, |i, j| {
             e(i, j) - if i == j { sigma } else { c64::new(0.0, 0.0) }
         });

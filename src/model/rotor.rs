@@ -378,6 +378,7 @@ impl BeamRotor {
         let (seals, general_seals) = parse_supports(&b.seals, true, &mut bad, &mut node_ok);
         supports.extend(seals);
         general_supports.extend(general_seals);
+        super::supports::check_schedule(&general_supports, &mut bad);
         let sleeves = if bad.is_empty() {
             parse_sleeves(
                 &b.sleeves,
@@ -495,6 +496,7 @@ impl MatrixRotor {
             }
         };
         let (isotropic, general_supports) = parse_supports(&m.supports, false, &mut bad, dof_ok);
+        super::supports::check_schedule(&general_supports, &mut bad);
         let mut stiffness = stiffness;
         let mut c_n = c_n;
         let mut h_n = h_n;

@@ -8,10 +8,14 @@
 //! imaginary part of `a_iso`, and only `a_an` couples `r` to its conjugate.
 //!
 //! A table gives every coefficient at increasing spin speeds; between them a coefficient is
-//! linear in the speed, outside them it is held at the end value.
+//! linear in the speed, outside them it is held at the end value. With `interpolation: "ross"`
+//! each coefficient is instead ROSS 2.3.0's curve through its column ([`Curve::ross`]: scipy's
+//! `interp1d` for 2-3 points, else its smoothing spline), extrapolated beyond the table as ROSS
+//! does; only stiffness and damping may then change with the speed.
 
-use super::api::{Coefficient, SupportInput};
+use super::api::{Coefficient, Interpolation, SupportInput};
 use super::error::{Invalid, loss_factor, non_negative};
+use super::spline::Curve;
 use crate::linalg::c64;
 
 /// Most speeds in one support's table.
@@ -101,10 +105,12 @@ impl Coefficients {
 #[derive(Debug, Clone, PartialEq)]
 pub enum Law {
     Constant(Coefficients),
-    /// Linear between increasing `speeds`, held outside them.
+    /// Linear between increasing `speeds`, held outside them; or, with `ross`, each
+    /// coefficient on its ROSS curve (12 of them, in the order k, c, m and xx, xy, yx, yy).
     Table {
         speeds: Vec<f64>,
         values: Vec<Coefficients>,
+        ross: Option<Vec<Curve>>,
     },
 }
 
@@ -133,7 +139,22 @@ impl GeneralSupport {
     pub fn at(&self, speed: f64) -> Coefficients {
         match &self.law {
             Law::Constant(c) => *c,
-            Law::Table { speeds, values } => {
+            Law::Table {
+                ross: Some(curves), ..
+            } => {
+                let m = |b: usize| Matrix2 {
+                    xx: curves[b].at(speed),
+                    xy: curves[b + 1].at(speed),
+                    yx: curves[b + 2].at(speed),
+                    yy: curves[b + 3].at(speed),
+                };
+                Coefficients {
+                    k: m(0),
+                    c: m(4),
+                    m: m(8),
+                }
+            }
+            Law::Table { speeds, values, .. } => {
                 let last = speeds.len() - 1;
                 if speed <= speeds[0] {
                     return values[0];
@@ -146,6 +167,25 @@ impl GeneralSupport {
                 values[k].lerp(&values[k + 1], t)
             }
         }
+    }
+
+    /// The coefficients the rotor's modes at rest are taken with: at speed 0, or, for a ROSS
+    /// curve, at the table's first speed (as a linear table holds them below it), so that a
+    /// curve extrapolated to rest does not decide the modal basis.
+    pub fn at_rest(&self) -> Coefficients {
+        match &self.law {
+            Law::Table {
+                speeds,
+                ross: Some(_),
+                ..
+            } => self.at(speeds[0]),
+            _ => self.at(0.0),
+        }
+    }
+
+    /// Whether its coefficients follow ROSS's curves.
+    pub fn ross(&self) -> bool {
+        matches!(&self.law, Law::Table { ross: Some(_), .. })
     }
 
     /// The table's speeds (none for constant coefficients).
@@ -296,6 +336,13 @@ pub fn parse_general(
     if bad.count() > before {
         return None;
     }
+    if s.interpolation.is_some() && s.speeds.is_none() {
+        bad.push(
+            format!("{at}.interpolation"),
+            "applies to a table: give `speeds` and the coefficients at them",
+        );
+        return None;
+    }
     let points = table.unwrap_or(1);
     // Column order: k(xx, xy, yx, yy), c(...), m(...); kyy and cyy default to kxx and cxx.
     let value = |col: usize, i: usize| -> f64 {
@@ -329,10 +376,45 @@ pub fn parse_general(
     };
     let law = match &s.speeds {
         None => Law::Constant(at_point(0)),
-        Some(w) => Law::Table {
-            speeds: w.clone(),
-            values: (0..points).map(at_point).collect(),
-        },
+        Some(w) => {
+            let values: Vec<Coefficients> = (0..points).map(at_point).collect();
+            let ross = match s.interpolation {
+                Some(Interpolation::Ross) => {
+                    if values.iter().any(|v| v.m != values[0].m) {
+                        bad.push(
+                            format!("{at}.interpolation"),
+                            "ROSS's interpolation is for stiffness and damping: mass \
+                             coefficients must not change with the speed (use \"linear\")",
+                        );
+                        return None;
+                    }
+                    if eta.is_some_and(|e| e > 0.0) {
+                        bad.push(
+                            format!("{at}.loss_factor"),
+                            "a table with ROSS's interpolation has no loss factor (ROSS has \
+                             none; use \"linear\" for a tabulated lossy support)",
+                        );
+                        return None;
+                    }
+                    Some(
+                        (0..12)
+                            .map(|col| {
+                                Curve::ross(
+                                    w,
+                                    &(0..points).map(|i| value(col, i)).collect::<Vec<_>>(),
+                                )
+                            })
+                            .collect(),
+                    )
+                }
+                _ => None,
+            };
+            Law::Table {
+                speeds: w.clone(),
+                values,
+                ross,
+            }
+        }
     };
     Some(GeneralSupport {
         index,
@@ -344,12 +426,49 @@ pub fn parse_general(
     })
 }
 
+/// With a support on ROSS's curves the rotor's tables are scheduled on one model
+/// (`damping/schedule.rs`), which needs every tabulated support without loss and with constant
+/// mass: each one that is not is an error naming it.
+pub fn check_schedule(general: &[GeneralSupport], bad: &mut Invalid) {
+    let Some(ross) = general.iter().find(|g| g.ross()) else {
+        return;
+    };
+    for g in general
+        .iter()
+        .filter(|g| !g.speeds().is_empty() && !g.ross())
+    {
+        let why = if g.loss_factor > 0.0 {
+            "loss_factor"
+        } else if g.mass_varies() {
+            "speeds"
+        } else {
+            continue;
+        };
+        bad.push(
+            format!("{}.{why}", g.path()),
+            format!(
+                "{} reads its table with ROSS's interpolation, so every table of the rotor must \
+                 have constant mass coefficients and no loss factor",
+                ross.path()
+            ),
+        );
+    }
+}
+
 /// The warning for analysis speeds outside a support's table (`None` if inside).
 pub fn held_warning(path: &str, support: &GeneralSupport, lo: f64, hi: f64) -> Option<String> {
     let w = support.speeds();
     let (first, last) = (*w.first()?, *w.last()?);
     let below = lo < first;
     let above = hi > last;
+    if support.ross() {
+        return (below || above).then(|| {
+            format!(
+                "{path}: outside its table ({first} to {last} rad/s) its coefficients are \
+                 extrapolated by ROSS's curves (analysis speeds {lo} to {hi} rad/s)"
+            )
+        });
+    }
     match (below, above) {
         (false, false) => None,
         (true, false) => Some(format!(
@@ -461,63 +580,4 @@ pub fn parse_supports(
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn skew_cross_coupling_is_isotropic_and_imaginary() {
-        let k = Matrix2 {
-            xx: 2.0,
-            xy: 3.0,
-            yx: -3.0,
-            yy: 2.0,
-        };
-        assert!(k.isotropic());
-        let (iso, an) = k.complex();
-        assert_eq!((iso, an), (c64::new(2.0, -3.0), c64::new(0.0, 0.0)));
-        // f_r = -(iso r + an conj r) equals -(K [x, y]) as a complex number.
-        let general = Matrix2 {
-            xx: 1.2,
-            xy: 0.3,
-            yx: -0.7,
-            yy: 0.5,
-        };
-        let (iso, an) = general.complex();
-        let (x, y) = (0.4, -1.3);
-        let r = c64::new(x, y);
-        let f = -(iso * r + an * r.conj());
-        let fx = -(general.xx * x + general.xy * y);
-        let fy = -(general.yx * x + general.yy * y);
-        assert!((f - c64::new(fx, fy)).norm() < 1e-15);
-    }
-
-    #[test]
-    fn tables_are_linear_inside_and_held_outside() {
-        let at = |k: f64| Coefficients {
-            k: Matrix2 {
-                xx: k,
-                xy: 0.0,
-                yx: 0.0,
-                yy: k,
-            },
-            ..Coefficients::default()
-        };
-        let s = GeneralSupport {
-            index: 0,
-            seal: false,
-            node: 0,
-            link: None,
-            law: Law::Table {
-                speeds: vec![100.0, 200.0, 400.0],
-                values: vec![at(1.0), at(3.0), at(4.0)],
-            },
-            loss_factor: 0.0,
-        };
-        assert_eq!(s.at(0.0).k.xx, 1.0);
-        assert_eq!(s.at(150.0).k.xx, 2.0);
-        assert_eq!(s.at(300.0).k.xx, 3.5);
-        assert_eq!(s.at(1e4).k.xx, 4.0);
-        assert!(held_warning("s", &s, 0.0, 300.0).unwrap().contains("first"));
-        assert!(held_warning("s", &s, 150.0, 300.0).is_none());
-    }
-}
+mod tests;

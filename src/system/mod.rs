@@ -155,7 +155,7 @@ impl RotorSystem {
         let n = self.n();
         let (mut k, mut m) = (RMat::zeros(n, n), RMat::zeros(n, n));
         for p in &self.supports {
-            let c = p.support.at(0.0);
+            let c = p.support.at_rest();
             let (kk, mm) = (0.5 * (c.k.xx + c.k.yy), 0.5 * (c.m.xx + c.m.yy));
             let w = p.at.weights();
             for &(i, a) in &w {

@@ -141,7 +141,7 @@ impl Realized {
     /// the directions: the rotor's own axisymmetric modes.
     pub fn undamped(system: &RotorSystem, layout: Layout) -> (CMat, CMat) {
         let r = Self::with(system, layout, |s| {
-            let c = s.at(0.0);
+            let c = s.at_rest();
             let sym = |m: &Matrix2| {
                 let m = m.symmetric();
                 match layout {

@@ -27,6 +27,7 @@
 
 use super::{Forcing, Method, TimeError, TimeResult, TimeSpec};
 use crate::analysis::control::Control;
+use crate::damping::schedule::ModalSchedule;
 use crate::damping::state::StateModel;
 use crate::linalg::{self, CMat, c64};
 
@@ -151,6 +152,8 @@ struct Stage {
     vinv: CMat,
     f1: Coupling,
     f2: Option<Coupling>,
+    /// Supports on ROSS's curves: their change from the stage's speed.
+    scheduled: Option<ModalSchedule>,
     /// `V^-1 B`, one column per load column.
     g: CMat,
     /// Rows of `V` of the outputs.
@@ -180,6 +183,7 @@ impl Stage {
             omega,
             f1: Coupling::new(&vinv, &f1, &e.vectors),
             f2: f2.as_ref().map(|f| Coupling::new(&vinv, f, &e.vectors)),
+            scheduled: state.schedule().map(|s| s.modal(&vinv, &e.vectors, omega)),
             g,
             lambda: e.values,
             v: e.vectors,
@@ -258,6 +262,9 @@ pub fn solve(
             let mut y = vec![c64::new(0.0, 0.0); size];
             let om = sp.omega(t);
             stage.f1.add_apply(w, om - stage.omega, &mut y, tmp);
+            if let Some(s) = &stage.scheduled {
+                s.add_apply(om, w, &mut y);
+            }
             if let Some(f2) = &stage.f2 {
                 f2.add_apply(w, om * om - stage.omega * stage.omega, &mut y, tmp);
             }
@@ -387,7 +394,7 @@ fn hard_breaks(state: &StateModel, forcing: &Forcing, spec: &TimeSpec) -> Vec<f6
         for pair in knots.windows(2) {
             let (ta, tb) = (pair[0], pair[1]);
             let (wa, wb) = (spec.speed.omega(ta), spec.speed.omega(tb));
-            for &p in table {
+            for &p in &table {
                 if (p - wa) * (p - wb) < 0.0 {
                     t.push(ta + (p - wa) / (wb - wa) * (tb - ta));
                 }

@@ -246,6 +246,10 @@ pub struct ReductionInfo {
     /// Speed at which every full-model pole with |decay_rate| and |frequency| at most
     /// `max_frequency` was compared with the reduced ones (and the other way round), rad/s.
     pub checked_speed: f64,
+    /// Every speed checked so, `checked_speed` first: a sweep over supports that change with
+    /// the speed is also checked at its lowest and middle speeds.
+    #[serde(default)]
+    pub checked_speeds: Vec<f64>,
     /// Largest distance between a reduced and a full-model pole found there: for a sweep
     /// relative, `|s_reduced - s_full| / |s_full|` (at most 1e-6); for a time response
     /// relative to the decay rate, `|s_reduced - s_full| / max(|Re s_full|, 1e-3 |s_full|)`

@@ -283,6 +283,22 @@ pub struct SupportInput {
     /// keeps a state matrix, counted against the memory budget before anything is built).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub speeds: Option<Vec<f64>>,
+    /// How a table is read between and beyond its speeds (default `linear`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub interpolation: Option<Interpolation>,
+}
+
+/// How a support's table is read.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, ToSchema)]
+#[serde(rename_all = "lowercase")]
+pub enum Interpolation {
+    /// Linear between the speeds, held at the end values outside them.
+    Linear,
+    /// ROSS 2.3.0's: each coefficient on scipy's `interp1d` (2 or 3 speeds: linear,
+    /// quadratic) or its smoothing spline (`UnivariateSpline`, 4 speeds and more), which
+    /// need not pass through the table's values, extrapolated beyond the table. Stiffness and
+    /// damping only: mass coefficients constant, no loss factor.
+    Ross,
 }
 
 /// A support coefficient: one number, or one per speed of the support's `speeds`.

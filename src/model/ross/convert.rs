@@ -17,10 +17,10 @@
 //!   become `rayleigh_damping` in the nonrotating frame, as ROSS adds `alpha M + beta K` to the
 //!   damping matrix with no circulatory term.
 //! - Bearings and seals: each coefficient one number when constant, else an array over
-//!   `speeds` (ROSS's `frequency`), read linearly and held at the ends as every Whirl table
-//!   (ROSS's interp1d / smoothing spline, extrapolating, is reproduced by `model::spline` but
-//!   not yet used by the analyses: a warning says so). `SealElement` and its subclasses go to
-//!   `seals`.
+//!   `speeds` (ROSS's `frequency`) with `interpolation: "ross"` (interp1d / smoothing spline,
+//!   extrapolating, as ROSS reads it), unless some table's mass coefficients change with the
+//!   speed: then every table is linear and held at its ends (a warning says so).
+//!   `SealElement` and its subclasses go to `seals`.
 //! - Point masses: the shaft's nodes or nodes off it, numbered as ROSS numbers them. Whirl's
 //!   point mass is isotropic: `mx != my` is `min(mx, my)` plus a support of mass coefficients
 //!   only (`mxx`, `myy`) on the node, exactly ROSS's mass matrix.
@@ -287,6 +287,10 @@ pub fn to_whirl(file: &RossFile, limits: &Limits) -> Result<Converted, Invalid> 
     let mut supports = vec![];
     let mut seals = vec![];
     let mut tables = false;
+    // ROSS's interpolation needs every table's mass constant (supports.rs: check_schedule).
+    let varying_mass = file.bearings.iter().find(|b| {
+        b.speeds.is_some() && b.values[8..12].iter().any(|v| v.iter().any(|x| *x != v[0]))
+    });
     for b in &file.bearings {
         let mut ok = true;
         for (key, node) in [("n", Some(b.n)), ("n_link", b.n_link)] {
@@ -319,7 +323,7 @@ pub fn to_whirl(file: &RossFile, limits: &Limits) -> Result<Converted, Invalid> 
         if !ok {
             continue;
         }
-        let (s, tabulated) = support(b, &mut warnings);
+        let (s, tabulated) = support(b, varying_mass.is_none(), &mut warnings);
         tables |= tabulated;
         if b.seal {
             seals.push(s);
@@ -328,16 +332,15 @@ pub fn to_whirl(file: &RossFile, limits: &Limits) -> Result<Converted, Invalid> 
         }
     }
     supports.extend(mass_supports);
-    if tables {
-        warnings.push(
-            "tabulated coefficients are converted as tables, linear between their speeds and \
-             held at the end values outside (Whirl's interpolation); ROSS interpolates them \
-             with scipy's interp1d for 2 or 3 speeds and its smoothing spline (s = number of \
-             speeds) for 4 or more, which need not pass through the table's values, and \
-             extrapolates: between and beyond the table speeds the coefficients, and the \
-             poles, differ from ROSS's"
-                .into(),
-        );
+    if let (true, Some(b)) = (tables, varying_mass) {
+        warnings.push(format!(
+            "tables are read linearly between their speeds and held at the end values outside \
+             (interpolation \"linear\"), not with ROSS's interp1d / smoothing spline, because \
+             {}'s mass coefficients change with the speed (ROSS's interpolation is available \
+             for stiffness and damping only): between and beyond the table speeds the \
+             coefficients, and the poles, differ from ROSS's",
+            b.table
+        ));
     }
     if !bad.is_empty() {
         return Err(bad);
@@ -425,7 +428,7 @@ fn hutchinson_kappa(e: &ShaftElement) -> f64 {
 }
 
 /// A bearing or seal as a Whirl support; whether it is tabulated.
-fn support(b: &Bearing, warnings: &mut Vec<String>) -> (Value, bool) {
+fn support(b: &Bearing, ross: bool, warnings: &mut Vec<String>) -> (Value, bool) {
     let mut s = Map::new();
     s.insert("node".into(), json!(b.n));
     if let Some(l) = b.n_link {
@@ -448,6 +451,9 @@ fn support(b: &Bearing, warnings: &mut Vec<String>) -> (Value, bool) {
     }
     if tabulated {
         s.insert("speeds".into(), json!(b.speeds));
+        if ross {
+            s.insert("interpolation".into(), json!("ross"));
+        }
     }
     let axial: Vec<&str> = COEFFICIENTS[12..]
         .iter()

@@ -84,14 +84,18 @@ impl Model {
             DampingModel::Hysteretic => (0, 4),
             _ => (0, 1),
         };
-        let mut speeds: Vec<f64> = self
-            .rotor
-            .general_supports()
+        let general = self.rotor.general_supports();
+        let mut speeds: Vec<f64> = general
             .iter()
             .flat_map(|s| s.speeds().iter().copied())
             .collect();
         speeds.sort_by(f64::total_cmp);
         speeds.dedup();
+        // Supports on ROSS's curves put every table on one scheduled model (`n x 2` more per
+        // support, not counted).
+        if general.iter().any(|s| s.ross()) {
+            speeds.truncate(1);
+        }
         Size {
             assembled: copies * self.rotor.assembled_dofs(),
             dofs: copies * n,
@@ -121,7 +125,7 @@ impl Model {
             if modal && s.speeds().first().is_some_and(|&w| w > 0.0) {
                 out.push(format!(
                     "{path}: the {} model is built on the modes of the rotor at rest, where \
-                     this support's coefficients are held at their first values",
+                     this support's coefficients are taken as at its table's first speed",
                     self.damping.name()
                 ));
             }
