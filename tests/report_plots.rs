@@ -328,6 +328,8 @@ fn shading_keeps_the_plain_plots() {
         "three panels (frequency, decay rate, log decrement), legend"
     );
     let s = StabilityResponse {
+        nondimensional: false,
+        output_unit: Default::default(),
         threshold: None,
         mode: None,
         whirl: None,
@@ -367,6 +369,7 @@ fn plots_survive_missing_and_non_finite_values() {
     u.nodes[0].peaks[0].separation_margin = Some(f64::NAN);
     finite_text(&unbalance_with(&u, None).unwrap());
     let empty = CriticalSpeedMapResponse {
+        output_unit: Default::default(),
         stiffness: vec![],
         frequencies: vec![],
         intersections: vec![],
