@@ -6,6 +6,8 @@
 
 #[path = "common/mod.rs"]
 mod common;
+#[path = "common/glyphs.rs"]
+mod glyphs;
 #[path = "report_sample.rs"]
 mod sample;
 
@@ -424,6 +426,52 @@ async fn nondimensional_jeffcott_plots_name_no_unit() {
         "{labels:?}"
     );
     assert!(labels.iter().any(|l| l == "spin speed [rpm]"));
+}
+
+/// The critical speed map of ROSS's compressor (`ross-compressor.campbell.json`'s rotor, 1e6
+/// to 1e10 N/m): 64 crossings of its bearings' kxx and kyy with the 4 modes, 56 distinct. Every
+/// callout is inside the plotting area and its glyphs (resvg's layout, as in the PNG)
+/// overlap no other text. `WHIRL_PLOT_DIR=dir` writes the PNG there.
+#[tokio::test]
+async fn a_map_of_64_crossings_keeps_its_callouts_apart() {
+    let c = example("ross-compressor.campbell.json");
+    let body = serde_json::json!({"rotor": c["rotor"],
+        "stiffness": {"start": 1e6, "stop": 1e10, "count": 31}});
+    let (status, v) = common::post_json("/v1/critical-speed-map", &body).await;
+    assert_eq!(status, 200, "{v}");
+    let n = v["intersections"].as_array().unwrap().len();
+    assert!(n >= 32, "{n} crossings");
+    let (status, _, svg) = common::post_as("/v1/critical-speed-map", &body, "image/svg+xml").await;
+    assert_eq!(status, 200);
+    let svg = String::from_utf8(svg).unwrap();
+    if let Ok(dir) = std::env::var("WHIRL_PLOT_DIR") {
+        let png = whirl::render::png::png(&svg).unwrap();
+        std::fs::write(
+            std::path::Path::new(&dir).join("ross-compressor-map.png"),
+            png,
+        )
+        .unwrap();
+    }
+    let area = sample::frames(&svg)[0];
+    let texts = glyphs::glyph_boxes(&svg);
+    let callouts: Vec<usize> = (0..texts.len())
+        .filter(|&i| texts[i].0.contains(" rad/s ("))
+        .collect();
+    // One callout per distinct point (two circles each: fill and ring).
+    let points = sample::elements(&svg, "circle").len() / 2;
+    assert!(points >= 32 && points <= n, "{points} of {n}");
+    assert_eq!(callouts.len(), points);
+    for &i in &callouts {
+        let (s, a) = &texts[i];
+        assert!(
+            area[0] <= a[0] && a[2] <= area[2] && area[1] <= a[1] && a[3] <= area[3],
+            "{s} {a:?} leaves the plotting area {area:?}"
+        );
+        for (j, (t, b)) in texts.iter().enumerate().filter(|(j, _)| *j != i) {
+            let overlap = a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3];
+            assert!(!overlap, "{s} {a:?} overlaps {t} {b:?} ({j})");
+        }
+    }
 }
 
 /// Writes every plot of the bundled examples to /tmp/plots/ (`-- --ignored dump`).
