@@ -155,8 +155,8 @@ async fn stability_and_campbell_in_hz_and_rpm() {
     assert!(plot_rpm == plot_rad, "the plots differ");
 }
 
-/// Unbalance peaks, the critical speed map and a frequency response in cpm, rpm and Hz
-/// against the rad/s answers.
+/// Unbalance peaks, the critical speed map, a frequency response and Level I in cpm, rpm and
+/// Hz against the rad/s answers.
 #[tokio::test]
 async fn responses_and_map_in_other_units() {
     let mut u = example("example1-nvd.unbalance-response.json");
@@ -206,6 +206,31 @@ async fn responses_and_map_in_other_units() {
         assert!((got - want).abs() < 1e-12 * want, "{got} {want}");
     }
     close(&hz["speed"], f["speed"].as_f64().unwrap() * HZ, "speed");
+
+    // Level I at 600 rad/s = 5729.578 rpm: its speed, frequencies and the rigid critical
+    // speed in rpm, the cross-coupling (N/m) and log decrements as they were.
+    let mut l = example("example1-hysteretic.level1.json");
+    let (s, rad) = common::post_json("/v1/level1", &l).await;
+    assert_eq!(s, 200, "{rad}");
+    l["output_unit"] = json!("rpm");
+    let (s, rpm) = common::post_json("/v1/level1", &l).await;
+    assert_eq!(s, 200, "{rpm}");
+    assert_eq!(rpm["output_unit"], "rpm");
+    assert!(
+        (rpm["speed"].as_f64().unwrap() - 5729.578).abs() < 1e-3,
+        "{rpm}"
+    );
+    for k in ["frequency_0", "rigid_critical_speed"] {
+        close(&rpm[k], rad[k].as_f64().unwrap() * RPM, k);
+    }
+    close(
+        &rpm["frequency"][2],
+        rad["frequency"][2].as_f64().unwrap() * RPM,
+        "frequency",
+    );
+    for k in ["q0", "cross_coupling", "log_decrement"] {
+        assert_eq!(rpm[k], rad[k], "{k}");
+    }
 }
 
 /// An unknown output unit: 422 naming the field.
