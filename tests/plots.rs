@@ -6,6 +6,8 @@
 
 #[path = "common/mod.rs"]
 mod common;
+#[path = "common/glyphs.rs"]
+mod glyphs;
 #[path = "report_sample.rs"]
 mod sample;
 
@@ -344,6 +346,132 @@ async fn modal_answers_draw_mode_shapes() {
     // A Jeffcott rotor's single node has no shape along a shaft: no plot.
     let j: ModalResponse = answer("/v1/modal", "jeffcott-nvd.modal.json").await;
     assert!(plot::modal(&j).unwrap().is_none());
+}
+
+/// The paper's nondimensional Jeffcott rotor (mass = stiffness = 1): its answers say so, and
+/// its plots give speeds, frequencies, rates and times over sqrt(k/m) with no rad/s, rpm, 1/s
+/// or s (they said "1.00 rad/s (9.55 rpm)"); a 10 kg rotor on 1e6 N/m keeps its units.
+#[tokio::test]
+async fn nondimensional_jeffcott_plots_name_no_unit() {
+    let rotor = serde_json::json!({"type": "jeffcott", "mass": 1, "stiffness": 1,
+        "loss_factor_rotating": 0.01, "loss_factor_nonrotating": 0.02});
+    let unbalance = serde_json::json!({"rotor": rotor, "damping": {"model": "equivalent"},
+        "speeds": {"start": 0, "stop": 3, "count": 61},
+        "unbalances": [{"node": 0, "amount": 0.01, "phase": 0}]});
+    let time = serde_json::json!({"rotor": rotor, "damping": {"model": "equivalent"},
+        "speed": 0.5, "unbalances": [{"node": 0, "amount": 0.01, "phase": 0}],
+        "duration": 20, "output_interval": 0.1});
+    let cases = [
+        (
+            "/v1/campbell",
+            example("jeffcott-equivalent.campbell.json"),
+            "Ω* = 1.00",
+        ),
+        (
+            "/v1/campbell",
+            example("jeffcott-hysteretic.campbell.json"),
+            "Ω* = 1.00",
+        ),
+        (
+            "/v1/stability",
+            example("jeffcott-equivalent.stability.json"),
+            "threshold Ω* = 3.00: mode 1F at ω* = 1.00",
+        ),
+        ("/v1/unbalance-response", unbalance, "peak Ω* = 1.0"),
+        ("/v1/time-response", time, "time t* = t·√(k/m)"),
+    ];
+    for (uri, body, label) in cases {
+        let (status, v) = common::post_json(uri, &body).await;
+        assert_eq!(status, 200, "{uri}: {v}");
+        assert_eq!(v["nondimensional"], true, "{uri}");
+        let (status, _, svg) = common::post_as(uri, &body, "image/svg+xml").await;
+        assert_eq!(status, 200);
+        let labels = texts(&String::from_utf8(svg).unwrap());
+        for l in &labels {
+            assert!(
+                !["rad/s", "rpm", "1/s", "[s]"].iter().any(|u| l.contains(u)),
+                "{uri}: {l}"
+            );
+        }
+        assert!(
+            labels.iter().any(|l| l.starts_with(label)),
+            "{uri}: {labels:?}"
+        );
+        if uri != "/v1/time-response" {
+            assert!(
+                labels.iter().any(|l| l == "spin speed Ω* = Ω/√(k/m)"),
+                "{labels:?}"
+            );
+        }
+        if uri != "/v1/unbalance-response" && uri != "/v1/time-response" {
+            assert!(
+                labels.iter().any(|l| l.contains("σ* = σ/√(k/m)")),
+                "{labels:?}"
+            );
+        }
+    }
+    let mut physical = example("jeffcott-equivalent.campbell.json");
+    physical["rotor"]["mass"] = serde_json::json!(10.0);
+    physical["rotor"]["stiffness"] = serde_json::json!(1e6);
+    physical["speeds"] = serde_json::json!({"start": 0, "stop": 600, "count": 61});
+    let (_, v) = common::post_json("/v1/campbell", &physical).await;
+    assert!(v.get("nondimensional").is_none(), "{v}");
+    let (_, _, svg) = common::post_as("/v1/campbell", &physical, "image/svg+xml").await;
+    let labels = texts(&String::from_utf8(svg).unwrap());
+    // sqrt(1e5) = 316.23 rad/s = 3020 rpm.
+    assert!(
+        labels
+            .iter()
+            .any(|l| l.starts_with("316.2 rad/s (3020 rpm)")),
+        "{labels:?}"
+    );
+    assert!(labels.iter().any(|l| l == "spin speed [rpm]"));
+}
+
+/// The critical speed map of ROSS's compressor (`ross-compressor.campbell.json`'s rotor, 1e6
+/// to 1e10 N/m): 64 crossings of its bearings' kxx and kyy with the 4 modes, 56 distinct. Every
+/// callout is inside the plotting area and its glyphs (resvg's layout, as in the PNG)
+/// overlap no other text. `WHIRL_PLOT_DIR=dir` writes the PNG there.
+#[tokio::test]
+async fn a_map_of_64_crossings_keeps_its_callouts_apart() {
+    let c = example("ross-compressor.campbell.json");
+    let body = serde_json::json!({"rotor": c["rotor"],
+        "stiffness": {"start": 1e6, "stop": 1e10, "count": 31}});
+    let (status, v) = common::post_json("/v1/critical-speed-map", &body).await;
+    assert_eq!(status, 200, "{v}");
+    let n = v["intersections"].as_array().unwrap().len();
+    assert!(n >= 32, "{n} crossings");
+    let (status, _, svg) = common::post_as("/v1/critical-speed-map", &body, "image/svg+xml").await;
+    assert_eq!(status, 200);
+    let svg = String::from_utf8(svg).unwrap();
+    if let Ok(dir) = std::env::var("WHIRL_PLOT_DIR") {
+        let png = whirl::render::png::png(&svg).unwrap();
+        std::fs::write(
+            std::path::Path::new(&dir).join("ross-compressor-map.png"),
+            png,
+        )
+        .unwrap();
+    }
+    let area = sample::frames(&svg)[0];
+    let texts = glyphs::glyph_boxes(&svg);
+    let callouts: Vec<usize> = (0..texts.len())
+        .filter(|&i| texts[i].0.contains(" rad/s ("))
+        .collect();
+    // One callout per distinct point (two circles each: fill and ring).
+    let points = sample::elements(&svg, "circle").len() / 2;
+    assert!(points >= 32 && points <= n, "{points} of {n}");
+    assert_eq!(callouts.len(), points);
+    for &i in &callouts {
+        let (s, a) = &texts[i];
+        assert!(
+            area[0] <= a[0] && a[2] <= area[2] && area[1] <= a[1] && a[3] <= area[3],
+            "{s} {a:?} leaves the plotting area {area:?}"
+        );
+        for (j, (t, b)) in texts.iter().enumerate().filter(|(j, _)| *j != i) {
+            let overlap = a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3];
+            assert!(!overlap, "{s} {a:?} overlaps {t} {b:?} ({j})");
+        }
+    }
 }
 
 /// Writes every plot of the bundled examples to /tmp/plots/ (`-- --ignored dump`).

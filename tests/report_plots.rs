@@ -2,6 +2,8 @@
 //! answers of `report_sample.rs`: one line per mode, markers inside the plotting area, labels
 //! apart, the Level I zero crossing at q0, no NaN in the SVG.
 
+#[path = "common/glyphs.rs"]
+mod glyphs;
 #[path = "report_sample.rs"]
 mod sample;
 
@@ -79,6 +81,65 @@ fn map_labels_do_not_overlap() {
         for b in &boxes[i + 1..] {
             let overlap = a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3];
             assert!(!overlap, "labels overlap: {a:?} {b:?}");
+        }
+    }
+}
+
+/// A map crowded with crossings: 4 modes met by two bearings whose kxx and kyy differ, 16
+/// callouts within a factor 2 of stiffness. Each callout's glyphs (laid out by resvg, as in
+/// the PNG) stay inside the plotting area, clear of the tick labels around it, and overlap no
+/// other text: no other callout, no mode label. `WHIRL_PLOT_DIR=dir` writes the PNG there.
+#[test]
+fn crowded_map_callouts_do_not_overlap() {
+    let mut c = map();
+    c.intersections.clear();
+    for (support, node, coefficient, k) in [
+        (0, 1, "kxx", 8e5),
+        (0, 1, "kyy", 1e6),
+        (1, 9, "kxx", 1.25e6),
+        (1, 9, "kyy", 1.6e6),
+    ] {
+        for m in 0..4 {
+            c.intersections.push(MapIntersection {
+                support,
+                node,
+                coefficient: coefficient.into(),
+                mode: m + 1,
+                stiffness: k,
+                frequency: mode_frequency(m, k),
+            });
+        }
+    }
+    for shade in [None, Some([180.0, 300.0])] {
+        let svg = critical_speed_map_with(&c, shade).unwrap();
+        if let Ok(dir) = std::env::var("WHIRL_PLOT_DIR") {
+            let png = whirl::render::png::png(&svg).unwrap();
+            let name = format!("crowded-map-{}.png", shade.is_some());
+            std::fs::write(std::path::Path::new(&dir).join(name), png).unwrap();
+        }
+        let area = frames(&svg)[0];
+        let texts = glyphs::glyph_boxes(&svg);
+        let callouts: Vec<&(String, [f64; 4])> =
+            texts.iter().filter(|t| t.0.contains(" rad/s (")).collect();
+        assert_eq!(callouts.len(), 16);
+        let f1 = mode_frequency(0, 8e5);
+        assert!(
+            callouts
+                .iter()
+                .any(|t| t.0 == format!("{f1:.1} rad/s ({:.0} rpm)", f1 * RPM))
+        );
+        for (s, a) in &callouts {
+            assert!(
+                area[0] <= a[0] && a[2] <= area[2] && area[1] <= a[1] && a[3] <= area[3],
+                "{s} {a:?} leaves the plotting area {area:?}"
+            );
+            for (t, b) in texts
+                .iter()
+                .filter(|t| !std::ptr::eq(t.0.as_str(), s.as_str()))
+            {
+                let overlap = a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3];
+                assert!(!overlap, "{s} {a:?} overlaps {t} {b:?}");
+            }
         }
     }
 }
@@ -328,6 +389,8 @@ fn shading_keeps_the_plain_plots() {
         "three panels (frequency, decay rate, log decrement), legend"
     );
     let s = StabilityResponse {
+        nondimensional: false,
+        output_unit: Default::default(),
         threshold: None,
         mode: None,
         whirl: None,
@@ -367,6 +430,7 @@ fn plots_survive_missing_and_non_finite_values() {
     u.nodes[0].peaks[0].separation_margin = Some(f64::NAN);
     finite_text(&unbalance_with(&u, None).unwrap());
     let empty = CriticalSpeedMapResponse {
+        output_unit: Default::default(),
         stiffness: vec![],
         frequencies: vec![],
         intersections: vec![],

@@ -99,6 +99,7 @@ pub fn map() -> CriticalSpeedMapResponse {
         }
     }
     CriticalSpeedMapResponse {
+        output_unit: Default::default(),
         stiffness,
         frequencies,
         intersections,
@@ -277,6 +278,8 @@ pub fn campbell_data() -> CampbellResponse {
     let critical = 122.4 / 0.99;
     let sigma = -2.0 + 0.00568 * critical;
     CampbellResponse {
+        nondimensional: false,
+        output_unit: Default::default(),
         branches: vec![
             branch(1, Whirl::Forward, &|w| 122.4 + 0.01 * w, &|w| {
                 -2.0 + 0.00568 * w
@@ -365,6 +368,8 @@ pub fn unbalance_data() -> UnbalanceResponseResponse {
     };
     let nodes = vec![node(5, 1.0), node(1, 0.31), node(9, 0.27)];
     UnbalanceResponseResponse {
+        nondimensional: false,
+        output_unit: Default::default(),
         speeds: s,
         nodes,
         reduction: None,
@@ -381,6 +386,7 @@ pub fn level1_data() -> Level1Response {
     let q = lin(0.0, 2e7, 21);
     let qa = 2.2e6;
     Level1Response {
+        output_unit: Default::default(),
         speed: 300.0,
         nodes: vec![5],
         weights: vec![1.0],
@@ -416,6 +422,7 @@ pub fn frequency_data() -> FrequencyResponseResponse {
     let amp: Vec<f64> = f.iter().map(|&w| h(w).norm()).collect();
     let phase: Vec<f64> = f.iter().map(|&w| h(w).arg()).collect();
     FrequencyResponseResponse {
+        output_unit: Default::default(),
         reduction: None,
         speed: 300.0,
         input_node: 5,

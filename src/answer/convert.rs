@@ -116,6 +116,7 @@ pub fn modal(r: &ModalResult) -> api::ModalResponse {
         .collect();
     poles.extend(r.poles.internal.iter().map(pole));
     api::ModalResponse {
+        output_unit: Default::default(),
         warnings: vec![],
         speed: r.poles.speed,
         poles,
@@ -128,6 +129,8 @@ pub fn modal(r: &ModalResult) -> api::ModalResponse {
 
 pub fn campbell(r: &CampbellResult) -> api::CampbellResponse {
     api::CampbellResponse {
+        nondimensional: false,
+        output_unit: Default::default(),
         warnings: vec![],
         speeds: r.speeds.clone(),
         branches: r
@@ -213,6 +216,8 @@ pub fn stability(
     max_decay_rate: Vec<f64>,
 ) -> api::StabilityResponse {
     api::StabilityResponse {
+        nondimensional: false,
+        output_unit: Default::default(),
         warnings: vec![],
         speeds: speeds.to_vec(),
         max_decay_rate,
@@ -398,6 +403,7 @@ pub fn damping_matrices(r: &ModelMatrices, model: &str) -> api::DampingMatricesR
 
 pub fn time_response(r: &TimeResult) -> api::TimeResponseResponse {
     api::TimeResponseResponse {
+        nondimensional: false,
         warnings: vec![],
         time: r.time.clone(),
         nodes: r
@@ -442,6 +448,8 @@ pub fn unbalance_response(
         q.iter().map(|row| f(&row[k])).collect()
     };
     api::UnbalanceResponseResponse {
+        nondimensional: false,
+        output_unit: Default::default(),
         warnings: vec![],
         reduction: None,
         speeds: speeds.to_vec(),

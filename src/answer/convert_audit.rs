@@ -18,6 +18,7 @@ use crate::model::speeds::RPM;
 
 pub fn critical_map(stiffness: &[f64], map: &CriticalMap) -> api::CriticalSpeedMapResponse {
     api::CriticalSpeedMapResponse {
+        output_unit: Default::default(),
         stiffness: stiffness.to_vec(),
         frequencies: map.frequencies.clone(),
         intersections: map
@@ -110,6 +111,7 @@ pub fn level1(
     let csr = rigid.filter(|w| *w > 0.0).map(|w| speed / w);
     let screen = qa.map(|(q, _)| level1::screen(r.q0, q, at_qa, csr, density));
     api::Level1Response {
+        output_unit: Default::default(),
         speed,
         nodes: at.iter().map(|a| a.0).collect(),
         weights: at.iter().map(|a| a.1).collect(),
@@ -186,6 +188,7 @@ pub fn frequency(
     };
     let col = |f: &dyn Fn(&Orbit) -> f64| response.iter().map(f).collect::<Vec<f64>>();
     api::FrequencyResponseResponse {
+        output_unit: Default::default(),
         speed,
         input_node: input.0,
         output_node: output,

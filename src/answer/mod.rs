@@ -11,6 +11,7 @@ pub mod convert;
 pub mod convert_audit;
 pub mod error;
 mod output;
+mod units;
 
 pub use error::ApiError;
 pub use output::Output;
@@ -124,6 +125,8 @@ impl Output {
 pub fn execute(task: &Task, control: &Control, max_bytes: u64) -> Result<Output, ApiError> {
     let mut out = Output::of(run(task, control)?, task)?;
     out.set_warnings(task.warnings.clone());
+    out.in_unit(task.output_unit);
+    out.set_nondimensional(task.model().is_some_and(|m| m.rotor.nondimensional()));
     let bytes = out.values() * BYTES_PER_VALUE;
     if bytes > max_bytes {
         return Err(ApiError::Unsolvable(format!(

@@ -16,6 +16,11 @@ pub struct Jeffcott {
 }
 
 impl Jeffcott {
+    /// The paper's nondimensional rotor (mass = stiffness = 1): speeds in units of sqrt(k/m).
+    pub fn is_nondimensional(&self) -> bool {
+        self.mass == 1.0 && self.stiffness == 1.0
+    }
+
     pub fn parse(j: &JeffcottInput, at: &str) -> Result<Self, Invalid> {
         let mut bad = Invalid::default();
         let mass = bad.check(&format!("{at}.mass"), positive(j.mass));

@@ -33,6 +33,11 @@ impl Rotor {
         }
     }
 
+    /// Whether this is the paper's nondimensional Jeffcott rotor (mass = stiffness = 1).
+    pub fn nondimensional(&self) -> bool {
+        matches!(self, Rotor::Jeffcott(j) if j.is_nondimensional())
+    }
+
     /// Number of nodes (each with a translation).
     pub fn node_count(&self) -> usize {
         match self {

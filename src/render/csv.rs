@@ -1,7 +1,8 @@
 //! The answer as a table: one row per speed, time or pole, each column's unit in its header
-//! (`speed [rad/s]`, `phase [rad]`; `[-]` for a ratio).
+//! (`speed [rad/s]`, or the answer's `output_unit`; `phase [rad]`; `[-]` for a ratio).
 
 use crate::answer::Output;
+use crate::model::api::SpeedUnit;
 
 fn num(v: Option<f64>) -> String {
     v.map(|x| format!("{x}")).unwrap_or_default()
@@ -197,6 +198,13 @@ pub fn csv(out: &Output) -> Option<String> {
             }
         }
         Output::Damping(_) | Output::Report(_) => return None,
+    }
+    // Speeds and frequencies are in the answer's unit: the header says which.
+    let unit = out.unit();
+    if unit != SpeedUnit::RadPerSecond {
+        let end = s.find('\n').unwrap_or(s.len());
+        let header = s[..end].replace("[rad/s]", &format!("[{}]", unit.symbol()));
+        s.replace_range(..end, &header);
     }
     Some(s)
 }

@@ -105,6 +105,8 @@ fn html(out: &Output) -> Result<Option<String>, ApiError> {
 }
 
 fn svg(out: &Output) -> Result<Option<String>, ApiError> {
+    // The plots label rad/s and rpm themselves, whatever unit the JSON answer is in.
+    let out = &*out.in_rad_s();
     let r = match out {
         Output::Campbell(c) => plot::campbell(c),
         Output::Stability(s) => plot::stability(s),

@@ -77,9 +77,11 @@ pub(crate) fn clip(shade: Option<[f64; 2]>, x0: f64, x1: f64) -> Option<(f64, f6
 
 /// `"123.4 rad/s (1178 rpm)"`, the decimals fitting the size of `w`.
 pub(crate) fn speed_label(w: f64) -> String {
-    if w == 0.0 {
-        return "0 rad/s (0 rpm)".into();
-    }
+    speed_label_in(w, false)
+}
+
+/// [`speed_label`], or on a nondimensional plot `"Ω* = 1.00"` (Ω / sqrt(k/m)).
+pub(crate) fn speed_label_in(w: f64, nondimensional: bool) -> String {
     let d = if w.abs() >= 100.0 {
         1
     } else if w.abs() >= 1.0 {
@@ -87,7 +89,24 @@ pub(crate) fn speed_label(w: f64) -> String {
     } else {
         3
     };
+    if nondimensional {
+        return format!("Ω* = {w:.d$}");
+    }
+    if w == 0.0 {
+        return "0 rad/s (0 rpm)".into();
+    }
     let rpm = w * RPM;
     let rd = if rpm.abs() >= 100.0 { 0 } else { 2 };
     format!("{w:.d$} rad/s ({rpm:.rd$} rpm)")
+}
+
+/// An axis title of a nondimensional plot: each quantity over its scale (`spin speed Ω* =
+/// Ω/√(k/m)`), no physical unit left.
+pub(crate) fn unit_free(desc: &str) -> String {
+    desc.replace("spin speed [rad/s]", "spin speed Ω* = Ω/√(k/m)")
+        .replace("|ω| [rad/s]", "|ω*| = |ω|/√(k/m)")
+        .replace("σ [1/s]", "σ* = σ/√(k/m)")
+        .replace("time [s]", "time t* = t·√(k/m)")
+        .replace(" [rad/s]", " [–]")
+        .replace(" [1/s]", " [–]")
 }

@@ -99,6 +99,29 @@ fn label(
     text(root, s, (x, y), NOTE, color, (HPos::Left, VPos::Top))
 }
 
+/// A callout `s` in the box `r` on a white ground (it may lie across a curve), joined to its
+/// marker `at` by a thin line from the marker's edge when it is not beside it.
+fn callout(root: &Area<'_>, s: &str, at: (i32, i32), r: Rect, color: RGBColor) -> Result<(), Err> {
+    // The ground as wide as the glyphs (DejaVu Sans: ~0.54 em a character, the box allows
+    // 0.62), so that it hides no more of a curve than the text does.
+    let w = (f64::from(r[2] - r[0]) * 0.9) as i32;
+    root.draw(&Rectangle::new(
+        [(r[0] - 2, r[1]), (r[0] + w + 2, r[3])],
+        WHITE.mix(0.8).filled(),
+    ))?;
+    let near = nearest(at, &r);
+    if (near.0 - at.0).abs() + (near.1 - at.1).abs() > 10 {
+        let (dx, dy) = (f64::from(near.0 - at.0), f64::from(near.1 - at.1));
+        let k = 7.0 / dx.hypot(dy);
+        let from = (at.0 + (dx * k) as i32, at.1 + (dy * k) as i32);
+        root.draw(&PathElement::new(
+            vec![from, near],
+            color.mix(0.8).stroke_width(1),
+        ))?;
+    }
+    text(root, s, (r[0], r[1]), NOTE, color, (HPos::Left, VPos::Top))
+}
+
 /// A boxed key of line styles (`dashed`) at the top-right corner `at`; returns its box.
 fn key(root: &Area<'_>, at: (i32, i32), entries: &[(String, RGBColor, bool)]) -> Result<Rect, Err> {
     let w = entries

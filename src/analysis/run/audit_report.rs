@@ -124,6 +124,7 @@ fn report_cases(
         nodes.sort_unstable();
         nodes.dedup();
         let task = Task {
+            output_unit: Default::default(),
             kind: TaskKind::Unbalance {
                 model: model.clone(),
                 speeds: speeds.clone(),

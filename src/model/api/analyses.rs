@@ -15,6 +15,10 @@ pub struct ModalRequest {
     /// Spin speed, rad/s (default 0).
     #[serde(default)]
     pub speed: f64,
+    /// Unit of the speeds and frequencies of the answer: `rad/s` (the default), `rpm`, `Hz` or
+    /// `cpm`; the answer's `output_unit` says which. Decay rates stay in 1/s.
+    #[serde(default)]
+    pub output_unit: Option<SpeedUnit>,
 }
 
 /// Body of `POST /v1/campbell` and `POST /v1/stability`.
@@ -41,6 +45,10 @@ pub struct SweepRequest {
     /// `reduction` says what was solved.
     #[serde(default)]
     pub modal_reduction: Option<bool>,
+    /// Unit of the speeds and frequencies of the answer: `rad/s` (the default), `rpm`, `Hz` or
+    /// `cpm`; the answer's `output_unit` says which. Decay rates stay in 1/s.
+    #[serde(default)]
+    pub output_unit: Option<SpeedUnit>,
 }
 
 /// Direction of whirl of a pole: `forward` (whirl frequency > 0), `backward` (< 0), or
@@ -106,6 +114,10 @@ pub struct ShaftLayout {
 /// Answer of `POST /v1/modal`.
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
 pub struct ModalResponse {
+    /// Unit of every speed and whirl or natural frequency in this answer (the request's
+    /// `output_unit`; rad/s by default). Decay rates are in 1/s whatever it is.
+    #[serde(default)]
+    pub output_unit: SpeedUnit,
     /// Spin speed, rad/s.
     pub speed: f64,
     /// Rotor poles by increasing |frequency|, then internal poles by decreasing |decay_rate|.
@@ -203,6 +215,15 @@ pub struct Ambiguity {
 /// Answer of `POST /v1/campbell`.
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
 pub struct CampbellResponse {
+    /// The rotor is the paper's nondimensional Jeffcott rotor (mass = stiffness = 1): its speeds,
+    /// frequencies and decay rates are in units of sqrt(k/m) and its times in units of
+    /// sqrt(m/k), and the plots label them so, without physical units.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub nondimensional: bool,
+    /// Unit of every speed and whirl or natural frequency in this answer (the request's
+    /// `output_unit`; rad/s by default). Decay rates are in 1/s whatever it is.
+    #[serde(default)]
+    pub output_unit: SpeedUnit,
     pub speeds: Vec<f64>,
     pub branches: Vec<Branch>,
     /// Speeds where a forward branch crosses the 1x line (frequency = speed) and is not
@@ -260,6 +281,15 @@ pub struct ReductionInfo {
 /// Answer of `POST /v1/stability`.
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
 pub struct StabilityResponse {
+    /// The rotor is the paper's nondimensional Jeffcott rotor (mass = stiffness = 1): its speeds,
+    /// frequencies and decay rates are in units of sqrt(k/m) and its times in units of
+    /// sqrt(m/k), and the plots label them so, without physical units.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub nondimensional: bool,
+    /// Unit of every speed and whirl or natural frequency in this answer (the request's
+    /// `output_unit`; rad/s by default). Decay rates are in 1/s whatever it is.
+    #[serde(default)]
+    pub output_unit: SpeedUnit,
     /// Lowest speed in `range` at which a pole has decay_rate > 0 (to 1e-6 relative), or null.
     pub threshold: Option<f64>,
     /// Mode number of the pole that becomes unstable (by |frequency| within its whirl).

@@ -36,6 +36,10 @@ pub struct CriticalSpeedMapRequest {
     #[serde(default)]
     #[schema(minimum = 1)]
     pub modes: Option<i64>,
+    /// Unit of the speeds and frequencies of the answer: `rad/s` (the default), `rpm`, `Hz` or
+    /// `cpm`; the answer's `output_unit` says which. Decay rates stay in 1/s.
+    #[serde(default)]
+    pub output_unit: Option<SpeedUnit>,
 }
 
 /// Where a mode of the map meets a support's actual stiffness.
@@ -58,6 +62,10 @@ pub struct MapIntersection {
 /// Answer of `POST /v1/critical-speed-map`.
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
 pub struct CriticalSpeedMapResponse {
+    /// Unit of every speed and whirl or natural frequency in this answer (the request's
+    /// `output_unit`; rad/s by default). Decay rates are in 1/s whatever it is.
+    #[serde(default)]
+    pub output_unit: SpeedUnit,
     /// N/m.
     pub stiffness: Vec<f64>,
     /// `frequencies[mode - 1][i]`: undamped natural frequency at zero speed of each mode at
@@ -296,6 +304,10 @@ pub struct Level1Request {
     /// answer's `reduction` says what was solved. Level II is always solved on the full model.
     #[serde(default)]
     pub modal_reduction: Option<bool>,
+    /// Unit of the speeds and frequencies of the answer: `rad/s` (the default), `rpm`, `Hz` or
+    /// `cpm`; the answer's `output_unit` says which. Decay rates stay in 1/s.
+    #[serde(default)]
+    pub output_unit: Option<SpeedUnit>,
 }
 
 /// How a Level I screen was reduced: the modal basis holds the lowest modes, their static
@@ -324,6 +336,10 @@ pub struct Level1ReductionInfo {
 /// Answer of `POST /v1/level1`.
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
 pub struct Level1Response {
+    /// Unit of every speed and whirl or natural frequency in this answer (the request's
+    /// `output_unit`; rad/s by default). Decay rates are in 1/s whatever it is.
+    #[serde(default)]
+    pub output_unit: SpeedUnit,
     pub speed: f64,
     pub nodes: Vec<usize>,
     /// Share of q at each node.
@@ -455,6 +471,10 @@ pub struct FrequencyResponseRequest {
     /// `/v1/unbalance-response`). The answer's `reduction` says what was solved.
     #[serde(default)]
     pub modal_reduction: Option<bool>,
+    /// Unit of the speeds and frequencies of the answer: `rad/s` (the default), `rpm`, `Hz` or
+    /// `cpm`; the answer's `output_unit` says which. Decay rates stay in 1/s.
+    #[serde(default)]
+    pub output_unit: Option<SpeedUnit>,
 }
 
 /// Answer of `POST /v1/frequency-response`: per unit force (m/N) at each frequency, the
@@ -462,6 +482,10 @@ pub struct FrequencyResponseRequest {
 /// backward circular parts `r(t) = F e^{i omega t} + B e^{-i omega t}`.
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
 pub struct FrequencyResponseResponse {
+    /// Unit of every speed and whirl or natural frequency in this answer (the request's
+    /// `output_unit`; rad/s by default). Decay rates are in 1/s whatever it is.
+    #[serde(default)]
+    pub output_unit: SpeedUnit,
     pub speed: f64,
     pub input_node: usize,
     pub output_node: usize,

@@ -91,6 +91,11 @@ pub struct NodeHistory {
 /// Answer of `POST /v1/time-response`.
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
 pub struct TimeResponseResponse {
+    /// The rotor is the paper's nondimensional Jeffcott rotor (mass = stiffness = 1): its speeds,
+    /// frequencies and decay rates are in units of sqrt(k/m) and its times in units of
+    /// sqrt(m/k), and the plots label them so, without physical units.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub nondimensional: bool,
     pub time: Vec<f64>,
     pub nodes: Vec<NodeHistory>,
     /// `exact` (constant speed: modal superposition, exact for piecewise-linear forces and
@@ -144,6 +149,10 @@ pub struct UnbalanceResponseRequest {
     /// answer's `reduction` says what was solved.
     #[serde(default)]
     pub modal_reduction: Option<bool>,
+    /// Unit of the speeds and frequencies of the answer: `rad/s` (the default), `rpm`, `Hz` or
+    /// `cpm`; the answer's `output_unit` says which. Decay rates stay in 1/s.
+    #[serde(default)]
+    pub output_unit: Option<SpeedUnit>,
 }
 
 /// Steady synchronous response of one node: an elliptical orbit (a circle on isotropic
@@ -175,6 +184,15 @@ pub struct NodeUnbalance {
 /// Answer of `POST /v1/unbalance-response`.
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
 pub struct UnbalanceResponseResponse {
+    /// The rotor is the paper's nondimensional Jeffcott rotor (mass = stiffness = 1): its speeds,
+    /// frequencies and decay rates are in units of sqrt(k/m) and its times in units of
+    /// sqrt(m/k), and the plots label them so, without physical units.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub nondimensional: bool,
+    /// Unit of every speed and whirl or natural frequency in this answer (the request's
+    /// `output_unit`; rad/s by default). Decay rates are in 1/s whatever it is.
+    #[serde(default)]
+    pub output_unit: SpeedUnit,
     pub speeds: Vec<f64>,
     pub nodes: Vec<NodeUnbalance>,
     /// The modal reduction the response was solved on; null when the full model was.

@@ -14,6 +14,7 @@ impl ModalRequest {
         let cost = Cost::new(size, 1, 1, 0, values).with_work(size.eigen_work());
         let speed = speed.expect("validated");
         Task {
+            output_unit: self.output_unit.unwrap_or_default(),
             warnings: model.warnings(speed, speed),
             kind: TaskKind::Modal { model, speed },
             cost,
@@ -63,6 +64,7 @@ impl SweepRequest {
         let bounded = self.max_frequency.is_none() && modes.is_none();
         let (lo, hi) = speeds.range();
         let task = Task {
+            output_unit: self.output_unit.unwrap_or_default(),
             warnings: model.warnings(lo, hi),
             kind: TaskKind::Campbell {
                 model,
@@ -88,6 +90,7 @@ impl SweepRequest {
         let cost = sweep_cost(size, count, limits, false, 2 * count as u64 + 8);
         let (lo, hi) = speeds.range();
         Ok(Task {
+            output_unit: self.output_unit.unwrap_or_default(),
             warnings: model.warnings(lo, hi),
             kind: TaskKind::Stability { model, speeds },
             cost,
@@ -190,6 +193,7 @@ impl DampingMatricesRequest {
             };
         let cost = Cost::new(size, 0, 0, extra, values).with_work(size.eigen_work() / 10.0);
         Task {
+            output_unit: Default::default(),
             warnings: model.warnings(speed, speed),
             kind: TaskKind::Damping {
                 model,

@@ -135,6 +135,7 @@ impl CriticalSpeedMapRequest {
         let count = stiffness.len();
         let values = (count * (modes as usize + 1)) as u64 + 64;
         Ok(Task {
+            output_unit: self.output_unit.unwrap_or_default(),
             warnings: seal_note(&rotor, "the undamped critical speed map"),
             kind: TaskKind::CriticalMap {
                 rotor,
@@ -179,6 +180,7 @@ impl StaticRequest {
         };
         let values = 6 * rotor.nodes() as u64 + 64;
         Ok(Task {
+            output_unit: Default::default(),
             warnings: seal_note(&rotor, "the static analysis"),
             kind: TaskKind::Static {
                 rotor,
@@ -315,6 +317,7 @@ impl Level1Request {
         let solves = qs.len().max(AUTO_COUNT) + 60;
         let values = 3 * qs.len().max(AUTO_COUNT) as u64 + 32;
         Ok(Task {
+            output_unit: self.output_unit.unwrap_or_default(),
             warnings: model.warnings(speed, speed),
             kind: TaskKind::Level1 {
                 model,
@@ -406,6 +409,7 @@ impl FrequencyResponseRequest {
         let work = count as f64 * (s * s * s) as f64 * 3.0;
         let speed = speed.expect("validated");
         Task {
+            output_unit: self.output_unit.unwrap_or_default(),
             warnings: model.warnings(speed, speed),
             kind: TaskKind::Frequency {
                 model,

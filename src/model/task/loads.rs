@@ -193,6 +193,7 @@ impl TimeResponseRequest {
         let cost = Cost::new(size, 2, 0, extra, values).with_work(work);
         let (lo, hi) = spec.speed.range(spec.duration);
         Task {
+            output_unit: Default::default(),
             warnings: model.warnings(lo, hi),
             kind: TaskKind::Time { model, spec },
             cost,
@@ -241,6 +242,7 @@ impl UnbalanceResponseRequest {
         let cost = Cost::new(size, 0, 0, extra, values).with_work(work);
         let (lo, hi) = speeds.range();
         Task {
+            output_unit: self.output_unit.unwrap_or_default(),
             warnings: model.warnings(lo, hi),
             kind: TaskKind::Unbalance {
                 model,

@@ -173,6 +173,8 @@ pub struct Task {
     /// What the answer should say about how the model was read (supports held outside their
     /// tables).
     pub warnings: Vec<String>,
+    /// Unit of the speeds and frequencies of the answer (the request's `output_unit`).
+    pub output_unit: super::api::SpeedUnit,
 }
 
 #[derive(Debug, Clone)]

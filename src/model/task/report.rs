@@ -154,6 +154,7 @@ impl ReportRequest {
                 count: 31,
             }),
             modes: Some(4),
+            output_unit: None,
         }
         .parse(limits)?;
         let statics = StaticRequest {
@@ -171,6 +172,7 @@ impl ReportRequest {
                 max_frequency,
                 modes: None,
                 modal_reduction: None,
+                output_unit: None,
             }
             .parse_campbell(limits)
         };
@@ -193,6 +195,7 @@ impl ReportRequest {
                 nodes: Some(nodes.clone()),
                 operating_range: Some(self.operating_range),
                 modal_reduction: None,
+                output_unit: None,
             }
             .parse(limits)
         };
@@ -213,6 +216,7 @@ impl ReportRequest {
                 cross_coupling: self.cross_coupling.clone(),
                 machine: self.machine.clone(),
                 modal_reduction: None,
+                output_unit: None,
             }
             .parse(limits)
             .map_err(|mut e| {
@@ -261,6 +265,7 @@ impl ReportRequest {
             cost.peak_bytes += plan.unbalance.cost.response_bytes;
         }
         Task {
+            output_unit: Default::default(),
             warnings: plan.campbell.warnings.clone(),
             kind: TaskKind::Report(Box::new(plan)),
             cost,

@@ -2,7 +2,7 @@
 //! over its decay-rate panel, and the stability plot (largest decay rate against speed).
 
 use super::svg::{Anchor, Axis, INK, Panel, Stroke, Svg, extent, sig, spread, text_width};
-use super::{COLOURS, Err, RPM, SHADE_HEX, clip, runs, speed_label};
+use super::{COLOURS, Err, RPM, SHADE_HEX, clip, runs};
 use crate::model::api::Whirl as ApiWhirl;
 use crate::model::api::{Branch, CampbellResponse, CriticalSpeed, StabilityResponse, Whirl};
 
@@ -188,7 +188,7 @@ fn log_dec_range(values: &[f64]) -> (f64, f64, Option<f64>) {
 
 /// [`campbell`] with the operating speeds `shade = [min, max]` (rad/s) shaded.
 pub fn campbell_with(c: &CampbellResponse, shade: Option<[f64; 2]>) -> Result<String, Err> {
-    let mut svg = Svg::new(W as u32, 1370);
+    let mut svg = Svg::new(W as u32, 1370).nondimensional(c.nondimensional);
     let (x0, x1) = extent(c.speeds.iter().copied()).unwrap_or((0.0, 1.0));
     let x = Axis::lin(x0, x1);
     let freqs = c
@@ -271,7 +271,7 @@ pub fn campbell_with(c: &CampbellResponse, shade: Option<[f64; 2]>) -> Result<St
         key.push(("operating range".into(), SHADE_HEX, Some("shade")));
     }
     if let Some(t) = c.threshold {
-        key.push((format!("threshold {}", speed_label(t)), RED, None));
+        key.push((format!("threshold {}", svg.speed_label(t)), RED, None));
     }
     let rows = svg.key_rows(((LEFT + RIGHT) / 2.0, 514.0), RIGHT - LEFT, &key);
     let dy = rows - 17.0;
@@ -313,7 +313,7 @@ pub fn campbell_with(c: &CampbellResponse, shade: Option<[f64; 2]>) -> Result<St
         let (px, py) = bottom.px((t, d_hi));
         svg.text(
             (px - 6.0, py + 16.0),
-            &format!("threshold {}", speed_label(t)),
+            &format!("threshold {}", svg.speed_label(t)),
             12.0,
             Anchor::End,
             RED,
@@ -484,7 +484,7 @@ fn criticals(svg: &mut Svg, p: &Panel, c: &CampbellResponse) {
     let mut groups: Vec<Vec<&&CriticalSpeed>> = vec![];
     for x in &marked {
         match groups.last_mut() {
-            Some(g) if speed_label(g[0].speed) == speed_label(x.speed) => g.push(x),
+            Some(g) if svg.speed_label(g[0].speed) == svg.speed_label(x.speed) => g.push(x),
             _ => groups.push(vec![x]),
         }
     }
@@ -495,7 +495,7 @@ fn criticals(svg: &mut Svg, p: &Panel, c: &CampbellResponse) {
     let ys: Vec<f64> = pts.iter().map(|q| q.1 + 16.0).collect();
     let ys = spread(&ys, 15.0, p.rect[1] + 12.0, p.rect[3] - 4.0);
     for ((q, y), g) in pts.iter().zip(ys).zip(&groups) {
-        let mut s = speed_label(g[0].speed);
+        let mut s = svg.speed_label(g[0].speed);
         let (f, b) = (
             g.iter().any(|x| x.whirl != ApiWhirl::Backward),
             g.iter().any(|x| x.whirl == ApiWhirl::Backward),
@@ -522,7 +522,7 @@ pub fn stability(s: &StabilityResponse) -> Result<String, Err> {
 
 /// [`stability`] with the operating speeds `shade = [min, max]` (rad/s) shaded.
 pub fn stability_with(s: &StabilityResponse, shade: Option<[f64; 2]>) -> Result<String, Err> {
-    let mut svg = Svg::new(W as u32, 540);
+    let mut svg = Svg::new(W as u32, 540).nondimensional(s.nondimensional);
     let (x0, x1) = extent(s.speeds.iter().copied()).unwrap_or((0.0, 1.0));
     let x = Axis::lin(x0, x1);
     let (y0, y1, clipped) = decay_range(s.max_decay_rate.iter().copied());
@@ -559,12 +559,12 @@ pub fn stability_with(s: &StabilityResponse, shade: Option<[f64; 2]>) -> Result<
             Stroke::solid(RED, 2.0),
             "threshold",
         );
-        let mut name = format!("threshold {}", speed_label(t));
+        let mut name = format!("threshold {}", svg.speed_label(t));
         if let (Some(m), Some(w)) = (s.mode, s.whirl) {
             let w = if w == Whirl::Backward { "B" } else { "F" };
             name += &format!(": mode {m}{w}");
             if let Some(f) = s.frequency {
-                name += &format!(" at ω = {f:.1} rad/s");
+                name += &format!(" at {}", svg.frequency_label(f));
             }
         }
         key.push((name, RED, None));

@@ -2,7 +2,7 @@
 //! and the unbalance response as a Bode plot (amplitude over phase against speed).
 
 use super::svg::{Anchor, Axis, INK, Panel, Stroke, Svg, extent, length_unit, spread, text_width};
-use super::{COLOURS, Err, RPM, speed_label};
+use super::{COLOURS, Err, RPM};
 use crate::model::api::{TimeResponseResponse, UnbalanceResponseResponse};
 
 /// At most this many points per line (evenly strided; more do not show at this size).
@@ -16,7 +16,7 @@ fn stride<T: Copy>(v: &[T]) -> impl Iterator<Item = T> + '_ {
 /// Whirl amplitude `|x + i y|` of each node against time (left) and the orbits, y against x
 /// at equal scales (right).
 pub fn time(r: &TimeResponseResponse) -> Result<String, Err> {
-    let mut svg = Svg::new(1200, 560);
+    let mut svg = Svg::new(1200, 560).nondimensional(r.nondimensional);
     let amps: Vec<Vec<f64>> = r
         .nodes
         .iter()
@@ -142,7 +142,7 @@ fn unwrap_deg(phase: &[f64]) -> Vec<f64> {
 /// 30 times the median; below it the phase of the forward whirl, unwrapped, in degrees. The
 /// peaks are marked with their speed.
 pub fn unbalance(r: &UnbalanceResponseResponse) -> Result<String, Err> {
-    let mut svg = Svg::new(960, 880);
+    let mut svg = Svg::new(960, 880).nondimensional(r.nondimensional);
     let (x0, x1) = extent(r.speeds.iter().copied()).unwrap_or((0.0, 1.0));
     let x = Axis::lin(x0, x1);
     let all: Vec<f64> = r
@@ -280,7 +280,7 @@ fn peak_marks(svg: &mut Svg, p: &Panel, mut marks: Vec<((f64, f64), &str, f64)>)
     let ys = spread(&ys, 15.0, p.rect[1] + 12.0, p.rect[3] - 4.0);
     for (&k, y) in named.iter().zip(ys) {
         let ((x0, y0), _, speed) = marks[k];
-        let s = format!("peak {}", speed_label(speed));
+        let s = format!("peak {}", svg.speed_label(speed));
         // Clear of every ring beside the label's line, not only its own (two nodes' peaks a
         // few pixels apart otherwise put one's ring inside the other's label).
         let beside: Vec<f64> = marks

@@ -109,6 +109,8 @@ pub struct Svg {
     out: String,
     /// Pixels covered by lines and text so far (where a key should not go).
     drawn: Vec<(f64, f64)>,
+    /// The paper's nondimensional rotor: axis titles and speeds name no physical unit.
+    nondimensional: bool,
 }
 
 impl Svg {
@@ -120,7 +122,33 @@ impl Svg {
              xmlns=\"http://www.w3.org/2000/svg\" font-family=\"{FONT}\">\n\
              <rect x=\"0\" y=\"0\" width=\"{w}\" height=\"{h}\" fill=\"#FFFFFF\"/>\n"
         );
-        Svg { out, drawn: vec![] }
+        Svg {
+            out,
+            drawn: vec![],
+            nondimensional: false,
+        }
+    }
+
+    /// Speeds, frequencies and decay rates in units of sqrt(k/m), times in sqrt(m/k) (the
+    /// nondimensional Jeffcott rotor): axis titles and speed labels say so, without rad/s,
+    /// 1/s, s or rpm, and there is no rpm axis.
+    pub fn nondimensional(mut self, on: bool) -> Self {
+        self.nondimensional = on;
+        self
+    }
+
+    /// A speed `w` as the plot labels it: `"123.4 rad/s (1178 rpm)"`, or `"Ω* = 1.00"`.
+    pub fn speed_label(&self, w: f64) -> String {
+        super::speed_label_in(w, self.nondimensional)
+    }
+
+    /// A whirl frequency `f` in a key: `"ω = 123.4 rad/s"`, or `"ω* = 1.00"`.
+    pub fn frequency_label(&self, f: f64) -> String {
+        if self.nondimensional {
+            format!("ω* = {f:.2}")
+        } else {
+            format!("ω = {f:.1} rad/s")
+        }
     }
 
     pub fn finish(mut self) -> String {
@@ -136,6 +164,11 @@ impl Svg {
     /// Grid, frame, ticks and axis titles of `p`.
     pub fn axes(&mut self, p: &Panel, x_desc: &str, y_desc: &str) {
         let [x0, y0, x1, y1] = p.rect;
+        let (x_desc, y_desc) = if self.nondimensional {
+            (super::unit_free(x_desc), super::unit_free(y_desc))
+        } else {
+            (x_desc.to_string(), y_desc.to_string())
+        };
         for (v, label) in p.x.ticks(8) {
             let (x, _) = p.px((v, p.y.lo));
             self.line_px(&[(x, y0), (x, y1)], Stroke::solid(GRID, 1.0));
@@ -165,16 +198,20 @@ impl Svg {
         );
         self.text(
             ((x0 + x1) / 2.0, y1 + 38.0),
-            x_desc,
+            &x_desc,
             13.0,
             Anchor::Middle,
             INK,
         );
-        self.text_rotated((x0 - 58.0, (y0 + y1) / 2.0), y_desc, 13.0);
+        self.text_rotated((x0 - 58.0, (y0 + y1) / 2.0), &y_desc, 13.0);
     }
 
-    /// A second x axis on top of `p` in units `factor` times its own (rpm of rad/s).
+    /// A second x axis on top of `p` in units `factor` times its own (rpm of rad/s); none on
+    /// a nondimensional plot.
     pub fn top_axis(&mut self, p: &Panel, factor: f64, desc: &str) {
+        if self.nondimensional {
+            return;
+        }
         let [x0, y0, x1, _] = p.rect;
         let a = Axis::lin(p.x.lo * factor, p.x.hi * factor);
         for (v, label) in a.ticks(8) {

@@ -108,10 +108,19 @@ pub fn critical_speed_map_with(
                 Circle::new((k, f), 6, INK.stroke_width(1)),
             ])?;
         }
-        for &(k, f, color) in &points {
-            let at = chart.backend_coord(&(k, f));
-            let s = format!("{f:.1} rad/s ({:.0} rpm)", f * RPM);
-            label(&root, &mut labels, &s, at, color, false)?;
+        // The callouts in columns beside the markers (many crossings crowd them).
+        let texts: Vec<String> = points
+            .iter()
+            .map(|(_, f, _)| format!("{f:.1} rad/s ({:.0} rpm)", f * RPM))
+            .collect();
+        let at: Vec<(i32, i32)> = points
+            .iter()
+            .map(|&(k, f, _)| chart.backend_coord(&(k, f)))
+            .collect();
+        let sizes: Vec<(i32, i32)> = texts.iter().map(|s| text_box(s, NOTE)).collect();
+        let boxes = labels.columns(&at, &sizes);
+        for (((s, &at), r), &(_, _, color)) in texts.iter().zip(&at).zip(boxes).zip(&points) {
+            callout(&root, s, at, r, color)?;
         }
         root.present()?;
     }
