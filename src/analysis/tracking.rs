@@ -91,7 +91,7 @@ fn matched(p: &Pole, doubled: bool) -> (c64, std::borrow::Cow<'_, [c64]>) {
 }
 
 impl Tracker {
-    /// A tracker of at most `max_branches` branches.
+    /// A tracker of at most `max_branches` branches alive at one speed.
     pub fn new(max_branches: usize) -> Self {
         Tracker {
             branches: vec![],
@@ -161,8 +161,13 @@ impl Tracker {
                 }
             }
         }
+        // A pole no branch takes starts one, as long as the branches alive at this speed are
+        // fewer than the model's poles: a branch that ended (two real poles that met and left
+        // as a complex pair) must not keep the pole it became from being followed.
+        let mut live = assigned.iter().flatten().count();
         for (pi, p) in poles.iter().enumerate() {
-            if !taken[pi] && branches.len() < self.max_branches {
+            if !taken[pi] && live < self.max_branches {
+                live += 1;
                 let mut values = vec![None; k];
                 values.push(Some(p.s));
                 let mut ratios = vec![None; k];
@@ -304,6 +309,43 @@ mod tests {
             .enumerate()
             .filter_map(|(i, j)| j.map(|j| cost[i][j]))
             .sum()
+    }
+
+    fn set(speed: f64, poles: &[(c64, usize)]) -> PoleSet {
+        let pole = |&(s, at): &(c64, usize)| Pole {
+            s,
+            whirl: super::super::poles::Whirl::Forward,
+            shape: (0..4)
+                .map(|i| c64::new(if i == at { 1.0 } else { 0.0 }, 0.0))
+                .collect(),
+            whirl_ratio: 1.0,
+        };
+        PoleSet {
+            speed,
+            rotor: poles.iter().map(pole).collect(),
+            internal: vec![],
+            expected_rotor: 2,
+            doubled: false,
+        }
+    }
+
+    #[test]
+    fn poles_that_no_ended_branch_takes_start_branches_of_their_own() {
+        // Two branches of a two-pole model end (their poles leave, as two real poles that meet
+        // and leave as a complex pair do) and two poles no branch can take appear: they start
+        // two branches, though four were made in all.
+        let mut t = Tracker::new(2);
+        t.push(&set(
+            0.0,
+            &[(c64::new(-100.0, 0.0), 0), (c64::new(-300.0, 0.0), 1)],
+        ));
+        let pair = [(c64::new(-50.0, 500.0), 2), (c64::new(-50.0, -500.0), 3)];
+        t.push(&set(1.0, &pair));
+        let (tracks, _) = t.finish();
+        assert_eq!(tracks.len(), 4);
+        for (track, (s, _)) in tracks[2..].iter().zip(pair) {
+            assert_eq!(track.values, vec![None, Some(s)]);
+        }
     }
 
     #[test]
