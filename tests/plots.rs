@@ -474,6 +474,42 @@ async fn a_map_of_64_crossings_keeps_its_callouts_apart() {
     }
 }
 
+/// A threshold near the left of the sweep (275 rad/s of 3200, tabulated bearings read as ROSS
+/// reads them): its label on the decay-rate plot turns to the right of the line rather than
+/// run off the left edge; no text of the plot leaves the image.
+#[tokio::test]
+async fn a_threshold_near_the_left_edge_keeps_its_label_inside() {
+    let mut r = example("fluid-film.unbalance-response.json")["rotor"].clone();
+    r["materials"]["steel"]["loss_factor"] = serde_json::json!(0.002);
+    r["supports"][0]["interpolation"] = serde_json::json!("ross");
+    r["seals"] = serde_json::json!([{"node": 3, "speeds": [300.0, 1200.0, 2400.0],
+        "kxx": [2e5, 5e5, 6e5], "kxy": [1e5, 3e5, 8e5], "kyx": [-1e5, -3e5, -8e5],
+        "kyy": [2e5, 5e5, 6e5], "cxx": [300.0, 250.0, 320.0], "cyy": [300.0, 250.0, 320.0],
+        "interpolation": "ross"}]);
+    let body = serde_json::json!({"rotor": r, "damping": {"model": "viscous"},
+        "speeds": {"start": 0, "stop": 3200, "count": 40}, "max_frequency": 1500.0});
+    let (status, v) = common::post_json("/v1/campbell", &body).await;
+    assert_eq!(status, 200, "{v}");
+    let t = v["threshold"].as_f64().expect("a threshold");
+    assert!(t < 0.15 * 3200.0, "{t}");
+    let (status, _, svg) = common::post_as("/v1/campbell", &body, "image/svg+xml").await;
+    assert_eq!(status, 200);
+    let svg = String::from_utf8(svg).unwrap();
+    let size = |name: &str| -> f64 {
+        let at = svg.find(&format!(" {name}=\"")).unwrap() + name.len() + 3;
+        svg[at..at + svg[at..].find('"').unwrap()].parse().unwrap()
+    };
+    let (w, h) = (size("width"), size("height"));
+    let texts = glyphs::glyph_boxes(&svg);
+    assert!(texts.iter().any(|(s, _)| s.starts_with("threshold ")));
+    for (s, b) in &texts {
+        assert!(
+            b[0] >= 0.0 && b[1] >= 0.0 && b[2] <= w && b[3] <= h,
+            "{s} {b:?} leaves the {w} x {h} image"
+        );
+    }
+}
+
 /// Writes every plot of the bundled examples to /tmp/plots/ (`-- --ignored dump`).
 #[tokio::test]
 #[ignore]

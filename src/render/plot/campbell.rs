@@ -311,13 +311,14 @@ pub fn campbell_with(c: &CampbellResponse, shade: Option<[f64; 2]>) -> Result<St
             "threshold",
         );
         let (px, py) = bottom.px((t, d_hi));
-        svg.text(
-            (px - 6.0, py + 16.0),
-            &format!("threshold {}", svg.speed_label(t)),
-            12.0,
-            Anchor::End,
-            RED,
-        );
+        // Left of the line, or right of it where the left edge would cut it.
+        let label = format!("threshold {}", svg.speed_label(t));
+        let (x, anchor) = if px - 6.0 - text_width(&label, 12.0) >= bottom.rect[0] {
+            (px - 6.0, Anchor::End)
+        } else {
+            (px + 6.0, Anchor::Start)
+        };
+        svg.text((x, py + 16.0), &label, 12.0, anchor, RED);
     }
     if let Some(m) = clipped {
         clipped_note(&mut svg, &bottom, m, 6.0);
