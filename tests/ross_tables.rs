@@ -261,57 +261,39 @@ async fn warnings_say_the_curves_extrapolate() {
     assert!(w.contains("rotor.supports[1]: above its table"), "{w}");
 }
 
+/// The 422 a modal analysis of `rotor` answers, as text.
+async fn refused(rotor: Value) -> String {
+    let (status, v) = post_json(
+        "/v1/modal",
+        &json!({"rotor": rotor, "damping": {"model": "viscous"}, "speed": 100.0}),
+    )
+    .await;
+    assert_eq!(status, 422, "{v}");
+    v.to_string()
+}
+
 #[tokio::test]
 async fn what_rosss_interpolation_cannot_take_is_named() {
     let mut r = rotor();
     r["supports"][0]["mxx"] = json!([1.0, 1.0, 2.0, 2.0, 2.0]);
-    let (status, v) = post_json(
-        "/v1/modal",
-        &json!({"rotor": r, "damping": {"model": "viscous"}, "speed": 100.0}),
-    )
-    .await;
-    assert_eq!(status, 422, "{v}");
-    assert!(
-        v.to_string().contains("rotor.supports[0].interpolation"),
-        "{v}"
-    );
+    let s = refused(r).await;
+    assert!(s.contains("rotor.supports[0].interpolation"), "{s}");
 
     let mut r = rotor();
     r["supports"][0]["loss_factor"] = json!(0.1);
-    let (status, v) = post_json(
-        "/v1/modal",
-        &json!({"rotor": r, "damping": {"model": "viscous"}, "speed": 100.0}),
-    )
-    .await;
-    assert_eq!(status, 422, "{v}");
-    assert!(
-        v.to_string().contains("rotor.supports[0].loss_factor"),
-        "{v}"
-    );
+    let s = refused(r).await;
+    assert!(s.contains("rotor.supports[0].loss_factor"), "{s}");
 
     // A linear table with a loss factor beside a ROSS one: named, with the ROSS one.
     let mut r = rotor();
     r["supports"][1]["loss_factor"] = json!(0.1);
-    let (status, v) = post_json(
-        "/v1/modal",
-        &json!({"rotor": r, "damping": {"model": "viscous"}, "speed": 100.0}),
-    )
-    .await;
-    assert_eq!(status, 422, "{v}");
-    let s = v.to_string();
+    let s = refused(r).await;
     assert!(s.contains("rotor.supports[1].loss_factor"), "{s}");
     assert!(s.contains("rotor.supports[0] reads its table"), "{s}");
 
+    // `interpolation` without a table.
     let mut r = fluid_film();
     r["supports"][0] = json!({"node": 0, "kxx": 1e6, "interpolation": "ross"});
-    let (status, v) = post_json(
-        "/v1/modal",
-        &json!({"rotor": r, "damping": {"model": "viscous"}, "speed": 100.0}),
-    )
-    .await;
-    assert_eq!(status, 422, "{v}");
-    assert!(
-        v.to_string().contains("rotor.supports[0].interpolation"),
-        "{v}"
-    );
+    let s = refused(r).await;
+    assert!(s.contains("rotor.supports[0].interpolation"), "{s}");
 }
