@@ -15,12 +15,12 @@
 //! `dK_s(w) = kappa(K_s(w)) - kappa(K_s(w0))` (likewise `dC_s`), exact at every speed whatever
 //! the curves are, as long as the mass coefficients are constant and a tabulated support has
 //! no loss factor (its loss would enter the hysteretic and modal models otherwise):
-//! `supports.rs` refuses both for ROSS's interpolation, and [`Schedule::applies`] keeps linear
-//! tables with either on the per-speed models.
+//! `supports.rs` refuses both on every table of a rotor with a support on ROSS's curves
+//! (`check_schedule`). `kappa` is [`point_action`], the one `Realized` assembles with.
 
 use crate::linalg::{self, CMat, LinalgError, c64};
-use crate::model::supports::{GeneralSupport, Matrix2};
-use crate::system::{Layout, Realized, RotorSystem};
+use crate::model::supports::GeneralSupport;
+use crate::system::{Layout, Realized, RotorSystem, point_action};
 
 /// One tabulated support: where it acts, its reference coefficients and `G = -M^-1 P`.
 #[derive(Debug, Clone)]
@@ -41,24 +41,8 @@ pub struct Schedule {
     /// Coordinates of the layout (`n`, or `2n` doubled) and of the rotor (`n`).
     n: usize,
     rotor: usize,
-    doubled: bool,
-    reference: f64,
+    layout: Layout,
     terms: Vec<Term>,
-}
-
-/// `kappa(a)`: the `q x q` action of a coefficient matrix on the coordinates of one point.
-fn kappa(a: &Matrix2, doubled: bool) -> CMat {
-    let (iso, an) = a.complex();
-    if doubled {
-        CMat::from_fn(2, 2, |i, j| match (i, j) {
-            (0, 0) => iso,
-            (0, 1) => an,
-            (1, 0) => an.conj(),
-            _ => iso.conj(),
-        })
-    } else {
-        CMat::from_fn(1, 1, |_, _| iso)
-    }
 }
 
 impl Schedule {
@@ -83,8 +67,8 @@ impl Schedule {
     pub fn new(system: &RotorSystem, r: &Realized, reference: f64) -> Result<Self, LinalgError> {
         let n = r.size();
         let rotor = system.n();
-        let doubled = r.layout == Layout::Doubled;
-        let q = if doubled { 2 } else { 1 };
+        let layout = r.layout;
+        let q = if layout == Layout::Doubled { 2 } else { 1 };
         let tabulated: Vec<_> = system
             .supports
             .iter()
@@ -109,8 +93,8 @@ impl Schedule {
                 let c = placed.support.at(reference);
                 Term {
                     support: placed.support.clone(),
-                    k0: kappa(&c.k, doubled),
-                    c0: kappa(&c.c, doubled),
+                    k0: point_action(&c.k, layout),
+                    c0: point_action(&c.c, layout),
                     weights,
                     g: CMat::from_fn(n, q, |i, b| -m_inv_p[(i, q * s + b)]),
                 }
@@ -119,15 +103,9 @@ impl Schedule {
         Ok(Schedule {
             n,
             rotor,
-            doubled,
-            reference,
+            layout,
             terms,
         })
-    }
-
-    /// The speed the reference model was built at.
-    pub fn reference(&self) -> f64 {
-        self.reference
     }
 
     /// Speeds where a linear table on the schedule changes segment (ROSS's curves are
@@ -145,7 +123,7 @@ impl Schedule {
     }
 
     fn q(&self) -> usize {
-        if self.doubled { 2 } else { 1 }
+        if self.layout == Layout::Doubled { 2 } else { 1 }
     }
 
     /// `(dK, dC)` of each support at `speed`.
@@ -155,8 +133,8 @@ impl Schedule {
             .map(|t| {
                 let c = t.support.at(speed);
                 (
-                    &kappa(&c.k, self.doubled) - &t.k0,
-                    &kappa(&c.c, self.doubled) - &t.c0,
+                    &point_action(&c.k, self.layout) - &t.k0,
+                    &point_action(&c.c, self.layout) - &t.c0,
                 )
             })
             .collect()
@@ -208,9 +186,8 @@ impl Schedule {
 
     /// The schedule's terms in the eigenvector basis `V` of a stage frozen at `speed` (the
     /// exponential integrator's `V^-1 (A(w) - A(speed)) V`, as thin factors).
-    pub fn modal(&self, vinv: &CMat, v: &CMat, speed: f64) -> ModalSchedule {
+    pub fn modal(&self, vinv: &CMat, v: &CMat, speed: f64) -> ModalSchedule<'_> {
         let n = self.n;
-        let size = v.nrows();
         let q = self.q();
         let vinv_top = CMat::from_fn(vinv.nrows(), n, |i, j| vinv[(i, j)]);
         let terms = self
@@ -225,12 +202,11 @@ impl Schedule {
                             .sum()
                     })
                 };
-                debug_assert!(2 * n <= size);
                 (&vinv_top * &t.g, right(n), right(0))
             })
             .collect();
         ModalSchedule {
-            schedule: self.clone(),
+            schedule: self,
             at: self.deltas(speed),
             terms,
         }
@@ -250,14 +226,14 @@ fn mix(dk: &CMat, px: &[c64], dc: &CMat, pv: &[c64]) -> Vec<c64> {
 
 /// A schedule in a stage's eigenvector basis: per support `V^-1 G` (`size x q`) and `P^T` of
 /// the `x` and `v` rows of `V` (`q x size`).
-pub struct ModalSchedule {
-    schedule: Schedule,
+pub struct ModalSchedule<'a> {
+    schedule: &'a Schedule,
     /// `(dK, dC)` at the stage's speed.
     at: Vec<(CMat, CMat)>,
     terms: Vec<(CMat, CMat, CMat)>,
 }
 
-impl ModalSchedule {
+impl ModalSchedule<'_> {
     /// `y += V^-1 (A(speed) - A(stage)) V w` of the supports' part.
     pub fn add_apply(&self, speed: f64, w: &[c64], y: &mut [c64]) {
         for (((left, rx, rv), (dk, dc)), (dk0, dc0)) in self

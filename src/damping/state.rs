@@ -261,11 +261,6 @@ impl StateModel {
         }
     }
 
-    /// Whether the model changes with the speed beyond `Omega A1`.
-    pub fn tabulated(&self) -> bool {
-        self.points.len() > 1 || self.schedule.is_some()
-    }
-
     /// The table's segment and weight at `speed`: `A = (1 - t) A[k] + t A[k + 1]`.
     fn segment(&self, speed: f64) -> (usize, f64) {
         let w = &self.points;

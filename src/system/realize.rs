@@ -73,17 +73,31 @@ fn add_circulatory(target: &mut CMat, s: &RMat, layout: Layout) {
     }
 }
 
+/// The action of a support coefficient matrix on one point's coordinates: `[a_iso]`, or on
+/// `(r, conj r)` `[[a_iso, a_an], [conj a_an, conj a_iso]]` (`supports.rs`).
+pub fn point_action(a: &Matrix2, layout: Layout) -> CMat {
+    let (iso, an) = a.complex();
+    match layout {
+        Layout::Single => CMat::from_fn(1, 1, |_, _| iso),
+        Layout::Doubled => CMat::from_fn(2, 2, |i, j| match (i, j) {
+            (0, 0) => iso,
+            (0, 1) => an,
+            (1, 0) => an.conj(),
+            _ => iso.conj(),
+        }),
+    }
+}
+
 /// Adds a support coefficient matrix on the translation `sum w_i q_i` (`weights`).
 fn add_support(target: &mut CMat, weights: &[(usize, f64)], n: usize, a: &Matrix2, layout: Layout) {
-    let (iso, an) = a.complex();
+    let k = point_action(a, layout);
     for &(i, wi) in weights {
         for &(j, wj) in weights {
             let w = wi * wj;
-            target[(i, j)] += iso * w;
-            if layout == Layout::Doubled {
-                target[(i, n + j)] += an * w;
-                target[(n + i, j)] += an.conj() * w;
-                target[(n + i, n + j)] += iso.conj() * w;
+            for b in 0..k.nrows() {
+                for c in 0..k.ncols() {
+                    target[(i + b * n, j + c * n)] += k[(b, c)] * w;
+                }
             }
         }
     }

@@ -145,7 +145,7 @@ impl Coupling {
 }
 
 /// One stage: the modal form of `A_k` and everything `N` needs in it.
-struct Stage {
+struct Stage<'a> {
     omega: f64,
     lambda: Vec<c64>,
     v: CMat,
@@ -153,16 +153,16 @@ struct Stage {
     f1: Coupling,
     f2: Option<Coupling>,
     /// Supports on ROSS's curves: their change from the stage's speed.
-    scheduled: Option<ModalSchedule>,
+    scheduled: Option<ModalSchedule<'a>>,
     /// `V^-1 B`, one column per load column.
     g: CMat,
     /// Rows of `V` of the outputs.
     rows: Vec<Vec<c64>>,
 }
 
-impl Stage {
+impl<'a> Stage<'a> {
     fn new(
-        state: &StateModel,
+        state: &'a StateModel,
         omega: f64,
         columns: &[Vec<c64>],
         out: &[Vec<(usize, f64)>],
