@@ -86,17 +86,24 @@ fn label(
 ) -> Result<(), Err> {
     let (x, y) = labels.place(at, s, NOTE, left);
     let (w, h) = text_box(s, NOTE);
-    let near = nearest(at, &[x, y, x + w, y + h]);
+    leader(root, at, &[x, y, x + w, y + h], 6.0, color)?;
+    text(root, s, (x, y), NOTE, color, (HPos::Left, VPos::Top))
+}
+
+/// A thin line from `gap` pixels off the marker `at` to the nearest point of the label's box
+/// `b`, when the label is not beside the marker.
+fn leader(root: &Area<'_>, at: (i32, i32), b: &Rect, gap: f64, color: RGBColor) -> Result<(), Err> {
+    let near = nearest(at, b);
     if (near.0 - at.0).abs() + (near.1 - at.1).abs() > 10 {
         let (dx, dy) = (f64::from(near.0 - at.0), f64::from(near.1 - at.1));
-        let r = 6.0 / dx.hypot(dy);
-        let from = (at.0 + (dx * r) as i32, at.1 + (dy * r) as i32);
+        let k = gap / dx.hypot(dy);
+        let from = (at.0 + (dx * k) as i32, at.1 + (dy * k) as i32);
         root.draw(&PathElement::new(
             vec![from, near],
             color.mix(0.8).stroke_width(1),
         ))?;
     }
-    text(root, s, (x, y), NOTE, color, (HPos::Left, VPos::Top))
+    Ok(())
 }
 
 /// A callout `s` in the box `r` on a white ground (it may lie across a curve), joined to its
@@ -109,16 +116,7 @@ fn callout(root: &Area<'_>, s: &str, at: (i32, i32), r: Rect, color: RGBColor) -
         [(r[0] - 2, r[1]), (r[0] + w + 2, r[3])],
         WHITE.mix(0.8).filled(),
     ))?;
-    let near = nearest(at, &r);
-    if (near.0 - at.0).abs() + (near.1 - at.1).abs() > 10 {
-        let (dx, dy) = (f64::from(near.0 - at.0), f64::from(near.1 - at.1));
-        let k = 7.0 / dx.hypot(dy);
-        let from = (at.0 + (dx * k) as i32, at.1 + (dy * k) as i32);
-        root.draw(&PathElement::new(
-            vec![from, near],
-            color.mix(0.8).stroke_width(1),
-        ))?;
-    }
+    leader(root, at, &r, 7.0, color)?;
     text(root, s, (r[0], r[1]), NOTE, color, (HPos::Left, VPos::Top))
 }
 
