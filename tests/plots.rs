@@ -510,6 +510,39 @@ async fn a_threshold_near_the_left_edge_keeps_its_label_inside() {
     }
 }
 
+/// ROSS's compressor, 24 branches: the two members of its second pair whirl forward on the
+/// anisotropic bearings; the diagram tells them apart (`2Fa`, `2Fb`), and no two branch ends
+/// share a label.
+#[tokio::test]
+async fn two_branches_of_one_mode_whirling_alike_are_told_apart() {
+    let mut body = example("ross-compressor.campbell.json");
+    body.as_object_mut().unwrap().remove("max_frequency");
+    body["modes"] = serde_json::json!(24);
+    let (status, v) = common::post_json("/v1/campbell", &body).await;
+    assert_eq!(status, 200, "{v}");
+    let c: CampbellResponse = serde_json::from_value(v).unwrap();
+    let twins = c
+        .branches
+        .iter()
+        .filter(|b| b.mode == 2 && b.whirl == Whirl::Forward)
+        .count();
+    assert_eq!(twins, 2, "mode 2 is no longer a forward-forward pair");
+    let svg = plot::campbell(&c).unwrap();
+    let labels = texts(&svg);
+    assert!(labels.contains(&"2Fa".to_string()) && labels.contains(&"2Fb".to_string()));
+    assert!(!labels.contains(&"2F".to_string()), "{labels:?}");
+    let tags: Vec<&String> = labels
+        .iter()
+        .filter(|t| {
+            t.len() <= 4 && t.starts_with(|c: char| c.is_ascii_digit()) && t.contains(['F', 'B'])
+        })
+        .collect();
+    // Each panel (frequency, decay rate, log decrement) labels every branch once.
+    let first = &tags[..c.branches.len()];
+    let distinct: std::collections::BTreeSet<_> = first.iter().collect();
+    assert_eq!(distinct.len(), first.len(), "{tags:?}");
+}
+
 /// Writes every plot of the bundled examples to /tmp/plots/ (`-- --ignored dump`).
 #[tokio::test]
 #[ignore]

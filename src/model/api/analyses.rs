@@ -12,9 +12,9 @@ use super::*;
 pub struct ModalRequest {
     pub rotor: RotorInput,
     pub damping: DampingInput,
-    /// Spin speed, rad/s (default 0).
+    /// Spin speed, rad/s or `{value, unit}` (default 0).
     #[serde(default)]
-    pub speed: f64,
+    pub speed: SpeedInput,
     /// Unit of the speeds and frequencies of the answer: `rad/s` (the default), `rpm`, `Hz` or
     /// `cpm`; the answer's `output_unit` says which. Decay rates stay in 1/s.
     #[serde(default)]
@@ -29,9 +29,10 @@ pub struct SweepRequest {
     pub damping: DampingInput,
     pub speeds: SpeedsInput,
     /// Campbell only: report the branches whose |frequency| is at most this at some speed of
-    /// the sweep, rad/s (default: all). Stability always considers every pole.
+    /// the sweep, rad/s or `{value, unit}` (default: all). Stability always considers every
+    /// pole.
     #[serde(default)]
-    pub max_frequency: Option<f64>,
+    pub max_frequency: Option<SpeedInput>,
     /// Campbell only: report the `modes` branches of lowest |frequency| at the first speed,
     /// forward and backward counted together (ROSS's `frequencies`), 1 to 2n; with
     /// `max_frequency` too, those of them below it. The sweep is bounded, and may be reduced,
@@ -323,9 +324,10 @@ pub struct DampingMatricesRequest {
     /// branches of each side is chosen automatically (omit `branches` and `nu` then).
     #[serde(default)]
     pub fit: Option<FitInput>,
-    /// Spin speed at which supports tabulated against speed are evaluated, rad/s (default 0).
+    /// Spin speed at which supports tabulated against speed are evaluated, rad/s or
+    /// `{value, unit}` (default 0).
     #[serde(default)]
-    pub speed: Option<f64>,
+    pub speed: Option<SpeedInput>,
 }
 
 /// Form of the returned matrices.

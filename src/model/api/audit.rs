@@ -100,9 +100,10 @@ pub struct StaticRequest {
     pub gravity: Option<f64>,
     #[serde(default)]
     pub supports: Option<StaticSupports>,
-    /// Spin speed at which supports tabulated against speed are evaluated, rad/s (default 0).
+    /// Spin speed at which supports tabulated against speed are evaluated, rad/s or
+    /// `{value, unit}` (default 0).
     #[serde(default)]
-    pub speed: Option<f64>,
+    pub speed: Option<SpeedInput>,
 }
 
 /// A support's load on the shaft.
@@ -284,8 +285,8 @@ pub struct Level2Response {
 pub struct Level1Request {
     pub rotor: RotorInput,
     pub damping: DampingInput,
-    /// Spin speed (the maximum continuous speed), rad/s.
-    pub speed: f64,
+    /// Spin speed (the maximum continuous speed), rad/s or `{value, unit}`.
+    pub speed: SpeedInput,
     /// The node the cross-coupling acts on; or `nodes`, which share it equally.
     #[serde(default)]
     #[schema(minimum = 0)]
@@ -460,9 +461,9 @@ pub struct ResponseOutput {
 pub struct FrequencyResponseRequest {
     pub rotor: RotorInput,
     pub damping: DampingInput,
-    /// Spin speed, rad/s (default 0).
+    /// Spin speed, rad/s or `{value, unit}` (default 0).
     #[serde(default)]
-    pub speed: f64,
+    pub speed: SpeedInput,
     pub input: ResponseInput,
     pub output: ResponseOutput,
     /// Excitation frequencies (> 0): a grid or a list, in rad/s unless its `unit` says.

@@ -37,6 +37,51 @@ pub struct UnbalanceInput {
     pub from: f64,
 }
 
+/// A spin speed history: `[[t, Omega], ...]` in s and rad/s, or `{points, unit}`.
+#[derive(Debug, Clone, Serialize, ToSchema)]
+#[serde(untagged)]
+pub enum SpeedProfile {
+    RadPerSecond(Vec<[f64; 2]>),
+    Valued(SpeedPoints),
+}
+
+/// `[[t, Omega], ...]`, t in s and Omega in `unit`.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SpeedPoints {
+    pub points: Vec<[f64; 2]>,
+    pub unit: SpeedUnit,
+}
+
+impl SpeedProfile {
+    /// The points with Omega in rad/s, and the path of the list as typed.
+    pub fn rad_s(&self) -> (Vec<[f64; 2]>, &'static str) {
+        match self {
+            SpeedProfile::RadPerSecond(p) => (p.clone(), "speed_profile"),
+            SpeedProfile::Valued(v) => (
+                v.points
+                    .iter()
+                    .map(|&[t, w]| [t, v.unit.to_rad_s(w)])
+                    .collect(),
+                "speed_profile.points",
+            ),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for SpeedProfile {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        use crate::model::tagged::variant;
+        match serde_json::Value::deserialize(d)? {
+            v @ serde_json::Value::Array(_) => variant(v).map(SpeedProfile::RadPerSecond),
+            v @ serde_json::Value::Object(_) => variant(v).map(SpeedProfile::Valued),
+            _ => Err(serde::de::Error::custom(
+                "must be [[t, Omega], ...] (s, rad/s) or {\"points\", \"unit\"}",
+            )),
+        }
+    }
+}
+
 /// Body of `POST /v1/time-response`.
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
 #[serde(deny_unknown_fields)]
@@ -44,13 +89,14 @@ pub struct TimeResponseRequest {
     pub rotor: RotorInput,
     /// `viscous`, `equivalent` or `nonviscous` (hysteretic damping has no time-domain form).
     pub damping: DampingInput,
-    /// Constant spin speed, rad/s (give this or `speed_profile`).
+    /// Constant spin speed, rad/s or `{value, unit}` (give this or `speed_profile`).
     #[serde(default)]
-    pub speed: Option<f64>,
-    /// `[[t, Omega], ...]`: piecewise-linear spin speed (run-up, run-down), held after the last
-    /// point; no jumps.
+    pub speed: Option<SpeedInput>,
+    /// `[[t, Omega], ...]` (s, rad/s), or `{points: [[t, Omega], ...], unit}` with Omega in
+    /// `unit`: piecewise-linear spin speed (run-up, run-down), held after the last point; no
+    /// jumps.
     #[serde(default)]
-    pub speed_profile: Option<Vec<[f64; 2]>>,
+    pub speed_profile: Option<SpeedProfile>,
     #[serde(default)]
     pub forces: Vec<ForceInput>,
     #[serde(default)]

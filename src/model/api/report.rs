@@ -37,9 +37,10 @@ pub struct ReportRequest {
     /// Critical speed map stiffness (default 1e5 to 1e10 N/m, 31 values).
     #[serde(default)]
     pub stiffness: Option<LogRange>,
-    /// Campbell branches: those below this frequency, rad/s (default 1.5 x the last speed).
+    /// Campbell branches: those below this frequency, rad/s or `{value, unit}` (default 1.5 x
+    /// the last speed).
     #[serde(default)]
-    pub max_frequency: Option<f64>,
+    pub max_frequency: Option<SpeedInput>,
     /// Damping models compared side by side (default: hysteretic, equivalent and nonviscous
     /// built from `damping`'s options where they apply, and viscous).
     #[serde(default)]

@@ -56,3 +56,85 @@ impl SpeedUnit {
         }
     }
 }
+
+/// One speed or frequency: a number in rad/s, or `{value, unit}` (e.g.
+/// `{"value": 3600, "unit": "rpm"}`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
+#[serde(untagged)]
+pub enum SpeedInput {
+    RadPerSecond(f64),
+    Valued(SpeedValue),
+}
+
+/// A speed or frequency in `unit`.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SpeedValue {
+    pub value: f64,
+    pub unit: SpeedUnit,
+}
+
+impl SpeedInput {
+    /// The speed in rad/s (exactly as typed when given in rad/s).
+    pub fn rad_s(self) -> f64 {
+        match self {
+            SpeedInput::RadPerSecond(w) => w,
+            SpeedInput::Valued(v) => v.unit.to_rad_s(v.value),
+        }
+    }
+
+    /// The path of the number as typed: `name`, or `name.value`, for a 422.
+    pub fn field(self, name: &str) -> String {
+        match self {
+            SpeedInput::RadPerSecond(_) => name.to_string(),
+            SpeedInput::Valued(_) => format!("{name}.value"),
+        }
+    }
+
+    /// As typed, with its unit, for a message.
+    pub fn typed(self) -> String {
+        match self {
+            SpeedInput::RadPerSecond(w) => format!("{w}"),
+            SpeedInput::Valued(v) => format!("{} {}", v.value, v.unit.symbol()),
+        }
+    }
+}
+
+impl Default for SpeedInput {
+    fn default() -> Self {
+        SpeedInput::RadPerSecond(0.0)
+    }
+}
+
+impl SpeedInput {
+    /// The number as typed, whatever its unit.
+    pub fn value(self) -> f64 {
+        match self {
+            SpeedInput::RadPerSecond(w) => w,
+            SpeedInput::Valued(v) => v.value,
+        }
+    }
+}
+
+impl From<f64> for SpeedInput {
+    fn from(w: f64) -> Self {
+        SpeedInput::RadPerSecond(w)
+    }
+}
+
+impl<'de> Deserialize<'de> for SpeedInput {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        match serde_json::Value::deserialize(d)? {
+            serde_json::Value::Number(n) => n
+                .as_f64()
+                .map(SpeedInput::RadPerSecond)
+                .ok_or_else(|| serde::de::Error::custom("must be a finite number")),
+            v @ serde_json::Value::Object(_) => {
+                crate::model::tagged::variant(v).map(SpeedInput::Valued)
+            }
+            _ => Err(serde::de::Error::custom(
+                "must be a number in rad/s or {\"value\", \"unit\"} (unit rad/s, rpm, Hz or cpm)",
+            )),
+        }
+    }
+}

@@ -6,7 +6,7 @@ use super::*;
 impl ModalRequest {
     pub fn parse(&self, limits: &Limits) -> Result<Task, Invalid> {
         let mut bad = Invalid::default();
-        let speed = bad.check("speed", non_negative(self.speed));
+        let speed = speed_at(&mut bad, "speed", self.speed);
         let model = Model::parse(&self.rotor, &self.damping, limits, bad)?;
         let size = model.size();
         let n = size.dofs as u64;
@@ -27,9 +27,12 @@ impl SweepRequest {
     fn parse_sweep(&self, limits: &Limits) -> Result<(Model, SpeedGrid), Invalid> {
         let mut bad = Invalid::default();
         if let Some(f) = self.max_frequency
-            && !(f.is_finite() && f > 0.0)
+            && !(f.value().is_finite() && f.value() > 0.0)
         {
-            bad.push("max_frequency", format!("must be a number > 0 (got {f})"));
+            bad.push(
+                f.field("max_frequency"),
+                format!("must be a number > 0 (got {})", f.typed()),
+            );
         }
         if let Some(m) = self.modes
             && m < 1
@@ -69,7 +72,7 @@ impl SweepRequest {
             kind: TaskKind::Campbell {
                 model,
                 speeds,
-                max_frequency: self.max_frequency.unwrap_or(f64::INFINITY),
+                max_frequency: self.max_frequency.map_or(f64::INFINITY, SpeedInput::rad_s),
                 modes,
                 reduce: self.modal_reduction.unwrap_or(true),
             },
@@ -148,7 +151,7 @@ impl DampingMatricesRequest {
                 _ => bad.push("fit.max_deviation", "applies to the nonviscous model only"),
             }
         }
-        let speed = bad.check("speed", non_negative(self.speed.unwrap_or(0.0)));
+        let speed = speed_at(&mut bad, "speed", self.speed.unwrap_or_default());
         let model = Model::parse(&self.rotor, &self.damping, limits, bad)?;
         let speed = speed.expect("validated");
         if matches!(

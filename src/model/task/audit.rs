@@ -2,12 +2,12 @@
 //! Level I and frequency response (the report that runs them all is in `report`).
 
 use super::loads::node_index;
-use super::{Model, Task, TaskKind, sweep_cost};
+use super::{Model, Task, TaskKind, speed_at, sweep_cost};
 use crate::model::api::{
     CriticalSpeedMapRequest, FrequencyResponseRequest, Level1Request, RotorInput, SpeedsInput,
     StaticRequest, StaticSupports,
 };
-use crate::model::error::{Invalid, finite, non_negative, positive};
+use crate::model::error::{Invalid, finite, positive};
 use crate::model::limits::{Cost, Limits, Size};
 use crate::model::loads::Excitation;
 use crate::model::rotor::{BeamRotor, Rotor};
@@ -164,7 +164,7 @@ impl StaticRequest {
     pub fn parse(&self, limits: &Limits) -> Result<Task, Invalid> {
         let mut bad = Invalid::default();
         let g = bad.check("gravity", positive(self.gravity.unwrap_or(9.8065)));
-        let speed = bad.check("speed", non_negative(self.speed.unwrap_or(0.0)));
+        let speed = speed_at(&mut bad, "speed", self.speed.unwrap_or_default());
         let rotor = beam(&self.rotor, limits, bad)?;
         let supports = self.supports.unwrap_or_default();
         if rotor.supports().len() + rotor.general_supports().len() == 0 {
@@ -268,7 +268,7 @@ fn placing(
 impl Level1Request {
     pub fn parse(&self, limits: &Limits) -> Result<Task, Invalid> {
         let mut bad = Invalid::default();
-        let speed = bad.check("speed", non_negative(self.speed));
+        let speed = speed_at(&mut bad, "speed", self.speed);
         let qs = match &self.cross_coupling {
             Some(c) => grid(
                 "cross_coupling",
@@ -361,7 +361,7 @@ fn excitation(v: &Option<Value>, bad: &mut Invalid) -> Option<Excitation> {
 impl FrequencyResponseRequest {
     pub fn parse(&self, limits: &Limits) -> Result<Task, Invalid> {
         let mut bad = Invalid::default();
-        let speed = bad.check("speed", non_negative(self.speed));
+        let speed = speed_at(&mut bad, "speed", self.speed);
         let exc = excitation(&self.input.direction, &mut bad);
         // One frequency is a valid question here (a sweep needs two speeds).
         let unit = self.frequencies.unit();

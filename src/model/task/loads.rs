@@ -47,11 +47,12 @@ impl TimeResponseRequest {
             );
         }
         let speed = match (self.speed, &self.speed_profile) {
-            (Some(w), None) => bad.check("speed", non_negative(w)).map(SpeedLaw::Constant),
+            (Some(w), None) => speed_at(&mut bad, "speed", w).map(SpeedLaw::Constant),
             (None, Some(p)) => {
-                let law = Pwl::parse(p, "speed_profile", false, &mut bad);
+                let (p, at) = p.rad_s();
+                let law = Pwl::parse(&p, at, false, &mut bad);
                 if p.iter().any(|q| q[1] < 0.0) {
-                    bad.push("speed_profile", "speeds must be >= 0");
+                    bad.push(at, "speeds must be >= 0");
                 }
                 law.map(SpeedLaw::Profile)
             }

@@ -6,7 +6,7 @@
 use super::api::{
     AnalysisName, CriticalSpeedMapRequest, DampingInput, DampingMatricesRequest,
     FrequencyResponseRequest, Level1Request, MatrixForm, ModalRequest, ReportRequest, RotorInput,
-    StaticRequest, SweepRequest, TimeResponseRequest, UnbalanceResponseRequest,
+    SpeedInput, StaticRequest, SweepRequest, TimeResponseRequest, UnbalanceResponseRequest,
 };
 use super::damping::BranchSet;
 use super::damping::DampingModel;
@@ -334,6 +334,12 @@ impl Task {
         }
         Ok(self)
     }
+}
+
+/// A typed speed in rad/s (>= 0), or its error added to `bad` at `name` (or `name.value`).
+fn speed_at(bad: &mut Invalid, name: &str, speed: SpeedInput) -> Option<f64> {
+    bad.check(&speed.field(name), non_negative(speed.value()))
+        .map(|_| speed.rad_s())
 }
 
 /// The speeds of a sweep, adding their errors to `bad`.

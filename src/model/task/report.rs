@@ -134,7 +134,9 @@ impl ReportRequest {
             .cross_coupling_nodes
             .clone()
             .unwrap_or_else(|| vec![unbalances.first().map_or(0, |u| u.node)]);
-        let max_frequency = self.max_frequency.or(Some(1.5 * SWEEP_OVER_MCS * hi));
+        let max_frequency = self
+            .max_frequency
+            .or(Some((1.5 * SWEEP_OVER_MCS * hi).into()));
         let mut bad = Invalid::default();
         let mut clearances = vec![];
         for (i, c) in self.clearances.iter().flatten().enumerate() {
@@ -161,7 +163,7 @@ impl ReportRequest {
             rotor: self.rotor.clone(),
             gravity: None,
             supports: Some(StaticSupports::Elastic),
-            speed: Some(hi),
+            speed: Some(hi.into()),
         }
         .parse(limits)?;
         let campbell_for = |damping: &DampingInput| {
@@ -206,7 +208,7 @@ impl ReportRequest {
             let level1 = Level1Request {
                 rotor: self.rotor.clone(),
                 damping: d.clone(),
-                speed: hi,
+                speed: hi.into(),
                 node: None,
                 nodes: if self.machine.is_some() {
                     None

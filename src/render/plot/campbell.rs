@@ -35,6 +35,25 @@ fn tag(b: &Branch) -> String {
     format!("{}{w}", b.mode)
 }
 
+/// Each branch's label: its mode and whirl, with `a`, `b`, ... where several branches share
+/// them (the two members of an anisotropic pair whirling the same way), in branch order.
+fn tags(branches: &[Branch]) -> Vec<String> {
+    let plain: Vec<String> = branches.iter().map(tag).collect();
+    plain
+        .iter()
+        .enumerate()
+        .map(|(i, t)| {
+            let same = |j: &usize| plain[*j] == *t;
+            if (0..plain.len()).filter(same).count() < 2 {
+                return t.clone();
+            }
+            let k = (0..i).filter(same).count();
+            let letter = char::from_u32('a' as u32 + (k % 26) as u32).unwrap_or('?');
+            format!("{t}{letter}")
+        })
+        .collect()
+}
+
 /// The y range of decay rates: zero included, padded. A peak far above the stable part
 /// (beyond the threshold) would flatten it: then the range stops at `1.5 |lowest|` and the
 /// third value is the clipped maximum.
@@ -120,7 +139,7 @@ fn branches<'a>(
     values: impl Fn(&Branch) -> Vec<Option<f64>>,
 ) -> Vec<((f64, f64), String, &'a str)> {
     let mut ends = vec![];
-    for b in &c.branches {
+    for (b, tag) in c.branches.iter().zip(tags(&c.branches)) {
         let color = colour(b.mode);
         let pieces = whirl_pieces(&c.speeds, b, &values(b));
         for (back, run) in &pieces {
@@ -133,10 +152,10 @@ fn branches<'a>(
                 dash: dash(w),
                 ..Stroke::solid(color, 2.0)
             };
-            svg.path(p, run, stroke, &format!("branch mode-{}", tag(b)));
+            svg.path(p, run, stroke, &format!("branch mode-{tag}"));
         }
         if let Some(last) = pieces.last().and_then(|r| r.1.last()) {
-            ends.push((*last, tag(b), color));
+            ends.push((*last, tag, color));
         }
     }
     ends
