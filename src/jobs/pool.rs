@@ -70,6 +70,10 @@ pub struct WorkerPool {
     queue: usize,
     threads: usize,
     short_pool: Arc<rayon::ThreadPool>,
+    /// The long lane's compute pools not in use: each long analysis takes one (at most
+    /// `workers` exist) and gives it back, so its threads, and the allocator arenas they warmed,
+    /// serve the next one instead of being started and faulted in again per analysis.
+    long_pools: Arc<std::sync::Mutex<Vec<rayon::ThreadPool>>>,
 }
 
 /// A place in the pool: held from admission until the analysis ends or is abandoned, so that
@@ -140,6 +144,7 @@ impl WorkerPool {
             queue,
             threads: threads.max(1),
             short_pool: Arc::new(short_pool),
+            long_pools: Arc::default(),
         }
     }
 
@@ -379,18 +384,29 @@ impl WorkerPool {
     {
         let threads = self.threads;
         let short = self.short_pool.clone();
+        let pools = self.long_pools.clone();
         tokio::task::spawn_blocking(move || {
             let _held = held;
             match lane {
                 Lane::Short => short.install(f),
                 Lane::Long => {
-                    let pool = rayon::ThreadPoolBuilder::new()
-                        .num_threads(threads)
-                        .thread_name(|i| format!("whirl-long-{i}"))
-                        .start_handler(|_| lower_priority())
-                        .build();
+                    let idle = pools.lock().ok().and_then(|mut p| p.pop());
+                    let pool = idle.map(Ok).unwrap_or_else(|| {
+                        rayon::ThreadPoolBuilder::new()
+                            .num_threads(threads)
+                            .thread_name(|i| format!("whirl-long-{i}"))
+                            .start_handler(|_| lower_priority())
+                            .build()
+                    });
                     match pool {
-                        Ok(pool) => pool.install(f),
+                        // A panic in `f` unwinds past the push: that pool is dropped.
+                        Ok(pool) => {
+                            let out = pool.install(f);
+                            if let Ok(mut p) = pools.lock() {
+                                p.push(pool);
+                            }
+                            out
+                        }
                         Err(_) => short.install(f),
                     }
                 }
