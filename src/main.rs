@@ -14,11 +14,6 @@ use whirl::service::config::SETTINGS;
 use whirl::service::server::{ServerLimits, serve as serve_http};
 use whirl::service::{self, Config};
 
-// Analyses allocate and free matrices of a few hundred kB to tens of MB many times per request;
-// glibc serves those from fresh mmaps (or trimmed arena tops) each time, so a 0.1 s Level I
-// spent almost as long in page faults as in arithmetic. mimalloc keeps the freed pages.
-#[global_allocator]
-static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
 /// Writes to stdout; a closed pipe (`whirl openapi | head`) ends quietly, not in a panic.
 fn print(text: &str) -> ExitCode {
