@@ -14,7 +14,6 @@ use whirl::service::config::SETTINGS;
 use whirl::service::server::{ServerLimits, serve as serve_http};
 use whirl::service::{self, Config};
 
-
 /// Writes to stdout; a closed pipe (`whirl openapi | head`) ends quietly, not in a panic.
 fn print(text: &str) -> ExitCode {
     let mut out = std::io::stdout().lock();
