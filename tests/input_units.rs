@@ -184,6 +184,11 @@ async fn a_bad_typed_speed_names_its_field() {
             .collect();
         assert!(fields.contains(&field), "{speed}: {e}");
     }
+    let mut b = example("anisotropic.campbell.json");
+    b["max_frequency"] = json!({"value": 0, "unit": "Hz"});
+    let (s, e) = common::post_json("/v1/campbell", &b).await;
+    assert_eq!(s, 422, "{e}");
+    assert_eq!(e["errors"][0]["path"], "max_frequency.value", "{e}");
     let mut b = example("example1-runup-nvd.time-response.json");
     b["speed_profile"] = json!({"points": [[0, 0], [3, -5]], "unit": "Hz"});
     let (s, e) = common::post_json("/v1/time-response", &b).await;

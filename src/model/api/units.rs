@@ -91,11 +91,11 @@ impl SpeedInput {
         }
     }
 
-    /// As typed, with its unit, for a message.
-    pub fn typed(self) -> String {
+    /// The number as typed, whatever its unit.
+    pub fn value(self) -> f64 {
         match self {
-            SpeedInput::RadPerSecond(w) => format!("{w}"),
-            SpeedInput::Valued(v) => format!("{} {}", v.value, v.unit.symbol()),
+            SpeedInput::RadPerSecond(w) => w,
+            SpeedInput::Valued(v) => v.value,
         }
     }
 }
@@ -103,16 +103,6 @@ impl SpeedInput {
 impl Default for SpeedInput {
     fn default() -> Self {
         SpeedInput::RadPerSecond(0.0)
-    }
-}
-
-impl SpeedInput {
-    /// The number as typed, whatever its unit.
-    pub fn value(self) -> f64 {
-        match self {
-            SpeedInput::RadPerSecond(w) => w,
-            SpeedInput::Valued(v) => v.value,
-        }
     }
 }
 

@@ -26,13 +26,8 @@ impl ModalRequest {
 impl SweepRequest {
     fn parse_sweep(&self, limits: &Limits) -> Result<(Model, SpeedGrid), Invalid> {
         let mut bad = Invalid::default();
-        if let Some(f) = self.max_frequency
-            && !(f.value().is_finite() && f.value() > 0.0)
-        {
-            bad.push(
-                f.field("max_frequency"),
-                format!("must be a number > 0 (got {})", f.typed()),
-            );
+        if let Some(f) = self.max_frequency {
+            typed_speed(&mut bad, "max_frequency", f, positive);
         }
         if let Some(m) = self.modes
             && m < 1

@@ -338,7 +338,17 @@ impl Task {
 
 /// A typed speed in rad/s (>= 0), or its error added to `bad` at `name` (or `name.value`).
 fn speed_at(bad: &mut Invalid, name: &str, speed: SpeedInput) -> Option<f64> {
-    bad.check(&speed.field(name), non_negative(speed.value()))
+    typed_speed(bad, name, speed, non_negative)
+}
+
+/// A typed speed in rad/s whose number as typed passes `check`; its error otherwise.
+fn typed_speed(
+    bad: &mut Invalid,
+    name: &str,
+    speed: SpeedInput,
+    check: fn(f64) -> Result<f64, String>,
+) -> Option<f64> {
+    bad.check(&speed.field(name), check(speed.value()))
         .map(|_| speed.rad_s())
 }
 
