@@ -13,9 +13,11 @@
 //! 7. `answer`: an outcome in the wire types its endpoint returns (`Output`), or why there is
 //!    none (`ApiError`, with its problem).
 //! 8. `render`: an answer as a document: a table, an SVG plot, the HTML report.
-//! 9. `jobs`: where analyses run off the request: the worker pool, the job store (SQLite or
-//!    PostgreSQL), this replica's runner, the counters of `/metrics`.
-//! 10. `service`: HTTP: routes, configuration, errors as problems, OpenAPI, middleware; the
+//! 9. `studies`: a job request over many values of its parameters: designs (grid, Monte
+//!    Carlo, Latin hypercube), JSON pointers, the statistics of the outputs.
+//! 10. `jobs`: where analyses run off the request: the worker pool, the job store (SQLite or
+//!     PostgreSQL), this replica's runner, the counters of `/metrics`; a study's samples as jobs.
+//! 11. `service`: HTTP: routes, configuration, errors as problems, OpenAPI, middleware; the
 //!     only layer that knows HTTP.
 //!
 //! Data flows one way: api types -> validated model -> assembled system -> damping model ->
@@ -30,4 +32,5 @@ pub mod linalg;
 pub mod model;
 pub mod render;
 pub mod service;
+pub mod studies;
 pub mod system;

@@ -22,6 +22,7 @@ pub mod pool;
 pub mod runner;
 pub mod store;
 pub mod stored;
+pub mod studies;
 
 use std::sync::Arc;
 use std::time::{Duration, UNIX_EPOCH};

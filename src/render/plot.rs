@@ -10,11 +10,13 @@ pub mod axis;
 mod campbell;
 mod modes;
 mod response;
+mod study;
 pub mod svg;
 
 pub use campbell::{campbell, campbell_with, decay_range, stability, stability_with};
 pub use modes::{modal, modal_plotted};
 pub use response::{time, unbalance};
+pub use study::study;
 
 pub use crate::model::speeds::RPM;
 pub(crate) const PALETTE: [RGBColor; 6] = [

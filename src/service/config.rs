@@ -27,6 +27,8 @@ pub struct Config {
     pub request_time_limit: Duration,
     pub job_retention: Duration,
     pub max_finished_jobs: usize,
+    /// Most samples of one study.
+    pub max_study_samples: usize,
     /// Compressed bytes of finished jobs' results kept.
     pub job_result_bytes: u64,
     pub job_time_limit: Duration,
@@ -145,6 +147,11 @@ pub const SETTINGS: &[Setting] = &[
         meaning: "most finished jobs kept",
     },
     Setting {
+        var: "WHIRL_MAX_STUDY_SAMPLES",
+        default: "5000",
+        meaning: "most samples of one study (POST /v1/studies); their estimated results together must also fit WHIRL_JOB_RESULT_BYTES",
+    },
+    Setting {
         var: "WHIRL_JOB_RESULT_BYTES",
         default: "268435456",
         meaning: "compressed bytes of finished results kept (oldest forgotten first)",
@@ -240,6 +247,7 @@ impl Default for Config {
             request_time_limit: Duration::from_secs(60),
             job_retention: Duration::from_secs(3600),
             max_finished_jobs: 1000,
+            max_study_samples: 5000,
             job_result_bytes: 256 << 20,
             job_time_limit: Duration::from_secs(600),
             shutdown_grace: Duration::from_secs(30),
@@ -450,6 +458,7 @@ impl Config {
             )?,
             job_retention: seconds(&get, "WHIRL_JOB_RETENTION", d.job_retention, 1.0)?,
             max_finished_jobs: num(&get, "WHIRL_MAX_FINISHED_JOBS", d.max_finished_jobs, 1)?,
+            max_study_samples: num(&get, "WHIRL_MAX_STUDY_SAMPLES", d.max_study_samples, 1)?,
             job_result_bytes: bytes("WHIRL_JOB_RESULT_BYTES", d.job_result_bytes)?,
             job_time_limit: seconds(&get, "WHIRL_JOB_TIME_LIMIT", d.job_time_limit, 0.1)?,
             shutdown_grace: seconds(&get, "WHIRL_SHUTDOWN_GRACE", d.shutdown_grace, 0.0)?,

@@ -24,6 +24,7 @@ pub mod routes;
 pub mod routes_audit;
 pub mod routes_convert;
 pub mod routes_jobs;
+pub mod routes_studies;
 pub mod server;
 pub mod slow;
 pub mod task;
@@ -124,6 +125,12 @@ pub fn router(state: AppState) -> (Router, utoipa::openapi::OpenApi) {
         ))
         .routes(utoipa_axum::routes!(routes::get_job, routes::cancel_job))
         .routes(utoipa_axum::routes!(routes::job_result))
+        .routes(utoipa_axum::routes!(routes_studies::submit_study))
+        .routes(utoipa_axum::routes!(
+            routes_studies::get_study,
+            routes_studies::cancel_study
+        ))
+        .routes(utoipa_axum::routes!(routes_studies::study_result))
         .routes(utoipa_axum::routes!(routes::metrics))
         .routes(utoipa_axum::routes!(problems::page))
         .with_state(state.clone())

@@ -33,6 +33,7 @@ Errors are application/problem+json with the path of every bad field.",
         (name = "audit", description = "The analyses of an API 684 / API 617 rotordynamic audit, and the report"),
         (name = "models", description = "Rotor models from other programs' files: ROSS's `Rotor.save`"),
         (name = "jobs", description = "Asynchronous analyses: submit, poll, fetch, cancel"),
+        (name = "studies", description = "One analysis over a grid or random samples of its parameters, each sample a job"),
         (name = "operations", description = "Health, readiness and metrics")
     )
 )]

@@ -45,17 +45,15 @@
 
 mod breaker;
 mod dir;
+mod migrations;
 
 pub use breaker::RETRY as PROBE_EVERY;
 mod postgres;
 mod sqlite;
 
-use std::borrow::Cow;
 use std::path::PathBuf;
 use std::time::{Duration, SystemTime, UNIX_EPOCH};
 
-use sqlx::error::BoxDynError;
-use sqlx::migrate::{Migration, MigrationSource, MigrationType, Migrator};
 use tokio::sync::OnceCell;
 
 use super::pool::Lane;
@@ -276,61 +274,6 @@ pub(crate) fn ms(d: Duration) -> i64 {
     d.as_millis().min(i64::MAX as u128) as i64
 }
 
-/// Migrations compiled into the binary: (version, description, SQL).
-#[derive(Debug)]
-struct Embedded(&'static [(i64, &'static str, &'static str)]);
-
-impl MigrationSource<'static> for Embedded {
-    fn resolve(
-        self,
-    ) -> futures_util::future::BoxFuture<'static, Result<Vec<Migration>, BoxDynError>> {
-        Box::pin(async move {
-            Ok(self
-                .0
-                .iter()
-                .map(|(v, d, sql)| {
-                    Migration::new(
-                        *v,
-                        Cow::Borrowed(*d),
-                        MigrationType::Simple,
-                        Cow::Borrowed(*sql),
-                        false,
-                    )
-                })
-                .collect())
-        })
-    }
-}
-
-const POSTGRES_MIGRATIONS: Embedded = Embedded(&[
-    (
-        1,
-        "jobs",
-        include_str!("../../../migrations/postgres/0001_jobs.sql"),
-    ),
-    (
-        3,
-        "job keys",
-        include_str!("../../../migrations/postgres/0003_job_keys.sql"),
-    ),
-]);
-const SQLITE_MIGRATIONS: Embedded = Embedded(&[
-    (
-        1,
-        "jobs",
-        include_str!("../../../migrations/sqlite/0001_jobs.sql"),
-    ),
-    (
-        3,
-        "job keys",
-        include_str!("../../../migrations/sqlite/0003_job_keys.sql"),
-    ),
-]);
-
-async fn migrator(m: Embedded) -> Result<Migrator, StoreError> {
-    Ok(Migrator::new(m).await?)
-}
-
 /// Where the jobs live.
 #[derive(Debug, Clone)]
 pub enum Target {
@@ -383,6 +326,11 @@ macro_rules! on_engine {
         }
     }};
 }
+
+// After the macro, which they use.
+pub mod studies;
+mod studies_pg;
+mod studies_sqlite;
 
 impl Store {
     /// A store that connects at its first use.
@@ -448,13 +396,13 @@ impl Store {
                         Target::Sqlite(dir) => {
                             self.claim_dir()?;
                             dir::private_files(dir, sqlite::FILE)?;
-                            let m = migrator(SQLITE_MIGRATIONS).await?;
+                            let m = migrations::sqlite().await?;
                             sqlite::Sqlite::connect(dir, self.retention, &m)
                                 .await
                                 .map(Engine::Sqlite)
                         }
                         Target::Postgres(url) => {
-                            let m = migrator(POSTGRES_MIGRATIONS).await?;
+                            let m = migrations::postgres().await?;
                             postgres::Postgres::connect(url, self.retention, &m)
                                 .await
                                 .map(Engine::Postgres)

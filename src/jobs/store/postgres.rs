@@ -28,8 +28,8 @@ const ROW: &str = "id, analysis, status, progress, \
     result_chunks::int8 AS result_chunks";
 
 pub struct Postgres {
-    pool: PgPool,
-    retention: Retention,
+    pub(super) pool: PgPool,
+    pub(super) retention: Retention,
 }
 
 /// The URL without its password.
@@ -94,9 +94,11 @@ impl Postgres {
             .bind(ADMISSION_LOCK)
             .execute(&mut *tx)
             .await?;
-        let waiting: i64 = sqlx::query_scalar("SELECT count(*) FROM jobs WHERE status = 'queued'")
-            .fetch_one(&mut *tx)
-            .await?;
+        let waiting: i64 = sqlx::query_scalar(
+            "SELECT count(*) FROM jobs WHERE status = 'queued' AND study_id IS NULL",
+        )
+        .fetch_one(&mut *tx)
+        .await?;
         if waiting >= queue as i64 {
             return Ok(Inserted::Full);
         }
@@ -139,7 +141,7 @@ impl Postgres {
              AND ($2::text IS NULL OR analysis = $2) AND ($3::text IS NULL OR id < $3) \
              AND (finished_at IS NULL \
                   OR finished_at > now() - $4::float8 * interval '1 millisecond') \
-             ORDER BY id DESC LIMIT $5"
+             AND study_id IS NULL ORDER BY id DESC LIMIT $5"
         ))
         .bind(f.status.map(status_text))
         .bind(f.analysis.as_deref())
@@ -194,7 +196,7 @@ impl Postgres {
              WHERE id = ( \
                SELECT id FROM jobs WHERE status = 'queued' \
                  AND ((lane = 'short' AND $3) OR (lane = 'long' AND $4 AND memory_mib <= $5)) \
-               ORDER BY id LIMIT 1 FOR UPDATE SKIP LOCKED) \
+               ORDER BY (study_id IS NOT NULL), id LIMIT 1 FOR UPDATE SKIP LOCKED) \
              RETURNING id, analysis, input, lane, memory_mib, \
                (extract(epoch FROM now() - created_at) * 1000)::int8 AS waited",
         )
@@ -319,7 +321,8 @@ impl Postgres {
     pub async fn purge(&self) -> Result<u64, sqlx::Error> {
         let mut conn = self.pool.acquire().await?;
         let old = sqlx::query(
-            "DELETE FROM jobs WHERE finished_at < now() - $1::float8 * interval '1 millisecond'",
+            "DELETE FROM jobs WHERE study_id IS NULL \
+             AND finished_at < now() - $1::float8 * interval '1 millisecond'",
         )
         .bind(ms(self.retention.age))
         .execute(&mut *conn)
@@ -328,7 +331,7 @@ impl Postgres {
         let beyond = sqlx::query(
             "DELETE FROM jobs WHERE id IN (SELECT id FROM ( \
                SELECT id, row_number() OVER w AS n, sum(result_bytes) OVER w AS bytes \
-               FROM jobs WHERE finished_at IS NOT NULL \
+               FROM jobs WHERE finished_at IS NOT NULL AND study_id IS NULL \
                WINDOW w AS (ORDER BY finished_at DESC, id DESC)) t \
              WHERE n > $1 OR bytes > $2)",
         )
@@ -337,7 +340,8 @@ impl Postgres {
         .execute(&mut *conn)
         .await?
         .rows_affected();
-        Ok(old + beyond)
+        // Studies whose samples have all finished longer ago than the retention.
+        Ok(old + beyond + self.purge_studies().await?)
     }
 
     pub async fn chunk(&self, id: &str, seq: i64) -> Result<Option<Vec<u8>>, sqlx::Error> {
@@ -349,7 +353,7 @@ impl Postgres {
     }
 
     pub async fn queued(&self) -> Result<i64, sqlx::Error> {
-        sqlx::query_scalar("SELECT count(*) FROM jobs WHERE status = 'queued'")
+        sqlx::query_scalar("SELECT count(*) FROM jobs WHERE status = 'queued' AND study_id IS NULL")
             .fetch_one(&self.pool)
             .await
     }

@@ -26,8 +26,8 @@ const ROW: &str = "id, analysis, status, progress, created_at AS created, \
     started_at AS started, finished_at AS finished, error, attempts, result_bytes, result_chunks";
 
 pub struct Sqlite {
-    pool: SqlitePool,
-    retention: Retention,
+    pub(super) pool: SqlitePool,
+    pub(super) retention: Retention,
 }
 
 fn row(r: &SqliteRow) -> Result<JobRow, sqlx::Error> {
@@ -82,7 +82,7 @@ impl Sqlite {
             "INSERT INTO jobs (id, analysis, input, lane, memory_mib, status, created_at, \
              idempotency_key, request_sha256) \
              SELECT ?1, ?2, ?3, ?4, ?5, 'queued', ?6, ?8, ?9 \
-             WHERE (SELECT count(*) FROM jobs WHERE status = 'queued') < ?7 RETURNING {ROW}"
+             WHERE (SELECT count(*) FROM jobs WHERE status = 'queued' AND study_id IS NULL) < ?7 RETURNING {ROW}"
         ))
         .bind(job.id)
         .bind(job.analysis)
@@ -118,7 +118,7 @@ impl Sqlite {
         sqlx::query(&format!(
             "SELECT {ROW} FROM jobs WHERE (?1 IS NULL OR status = ?1) \
              AND (?2 IS NULL OR analysis = ?2) AND (?3 IS NULL OR id < ?3) \
-             AND (finished_at IS NULL OR finished_at > ?4) ORDER BY id DESC LIMIT ?5"
+             AND (finished_at IS NULL OR finished_at > ?4) AND study_id IS NULL ORDER BY id DESC LIMIT ?5"
         ))
         .bind(f.status.map(status_text))
         .bind(f.analysis.as_deref())
@@ -173,7 +173,7 @@ impl Sqlite {
              WHERE id = ( \
                SELECT id FROM jobs WHERE status = 'queued' \
                  AND ((lane = 'short' AND ?4) OR (lane = 'long' AND ?5 AND memory_mib <= ?6)) \
-               ORDER BY id LIMIT 1) \
+               ORDER BY (study_id IS NOT NULL), id LIMIT 1) \
              RETURNING id, analysis, input, lane, memory_mib, ?2 - created_at AS waited",
         )
         .bind(worker)
@@ -296,7 +296,7 @@ impl Sqlite {
     }
 
     pub async fn purge(&self) -> Result<u64, sqlx::Error> {
-        let old = sqlx::query("DELETE FROM jobs WHERE finished_at < ?1")
+        let old = sqlx::query("DELETE FROM jobs WHERE study_id IS NULL AND finished_at < ?1")
             .bind(now_ms() - ms(self.retention.age))
             .execute(&self.pool)
             .await?
@@ -304,7 +304,7 @@ impl Sqlite {
         let beyond = sqlx::query(
             "DELETE FROM jobs WHERE id IN (SELECT id FROM ( \
                SELECT id, row_number() OVER w AS n, sum(result_bytes) OVER w AS bytes \
-               FROM jobs WHERE finished_at IS NOT NULL \
+               FROM jobs WHERE finished_at IS NOT NULL AND study_id IS NULL \
                WINDOW w AS (ORDER BY finished_at DESC, id DESC)) \
              WHERE n > ?1 OR bytes > ?2)",
         )
@@ -313,7 +313,8 @@ impl Sqlite {
         .execute(&self.pool)
         .await?
         .rows_affected();
-        Ok(old + beyond)
+        // Studies whose samples have all finished longer ago than the retention.
+        Ok(old + beyond + self.purge_studies().await?)
     }
 
     pub async fn chunk(&self, id: &str, seq: i64) -> Result<Option<Vec<u8>>, sqlx::Error> {
@@ -325,7 +326,7 @@ impl Sqlite {
     }
 
     pub async fn queued(&self) -> Result<i64, sqlx::Error> {
-        sqlx::query_scalar("SELECT count(*) FROM jobs WHERE status = 'queued'")
+        sqlx::query_scalar("SELECT count(*) FROM jobs WHERE status = 'queued' AND study_id IS NULL")
             .fetch_one(&self.pool)
             .await
     }

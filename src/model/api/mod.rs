@@ -12,6 +12,7 @@ mod loads;
 mod report;
 mod service;
 mod shaft;
+mod studies;
 mod units;
 
 pub use analyses::*;
@@ -20,6 +21,7 @@ pub use loads::*;
 pub use report::*;
 pub use service::*;
 pub use shaft::*;
+pub use studies::*;
 pub use units::*;
 
 use serde::{Deserialize, Deserializer, Serialize};
