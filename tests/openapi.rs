@@ -280,7 +280,7 @@ async fn every_request_example_is_accepted() {
                 );
             }
         }
-        let expected = if path == "/v1/jobs" {
+        let expected = if path == "/v1/jobs" || path == "/v1/studies" {
             StatusCode::ACCEPTED
         } else {
             StatusCode::OK

@@ -85,6 +85,22 @@ pub(super) fn add(doc: &mut Value, jobs: &[(String, String)]) {
         "/v1/jobs",
         json!({ "analysis": JOB_EXAMPLE, "input": input }),
     );
+    set(doc, "/v1/studies", study());
+}
+
+/// A study's example: the equivalent Jeffcott threshold over eta_n (eq. 10: 1 + eta_n/eta_r).
+fn study() -> Value {
+    let input: Value = serde_json::from_str(include_str!(
+        "../../../examples/jeffcott-equivalent.stability.json"
+    ))
+    .expect("a bundled example is JSON");
+    json!({
+        "analysis": "stability",
+        "input": input,
+        "parameters": [{"pointer": "/rotor/loss_factor_nonrotating", "values": [0.0, 0.01, 0.02, 0.03]}],
+        "design": "grid",
+        "outputs": ["/threshold"]
+    })
 }
 
 fn set(doc: &mut Value, path: &str, body: Value) {
