@@ -2,7 +2,9 @@
 //! closed-form threshold 1 + eta_n/eta_r (eq. 10 of the paper); Monte Carlo and Latin
 //! hypercube designs repeat with their seed, and the hypercube has one sample per stratum;
 //! bad pointers, designs and sample inputs are refused before any sample is queued; a study
-//! is cancelled with its samples; single jobs go before a study's samples. In process, each
+//! is cancelled with its samples; single jobs go before a study's samples; a failed sample keeps
+//! its error, samples are not purged as single jobs are, and a study past the retention is
+//! forgotten with its samples. In process, each
 //! test with an embedded store of its own. The replicas sharing PostgreSQL are in
 //! `tests/studies_cluster.rs`.
 
@@ -479,4 +481,80 @@ async fn single_jobs_go_first_and_a_cancelled_study_stops_its_samples() {
                 .unwrap()
                 .contains("study was cancelled")
     }));
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn failed_samples_keep_their_error_and_a_study_is_forgotten_with_its_samples() {
+    let (config, _dir) = config();
+    // Samples past the job time limit fail (once: not retried); few finished jobs kept, a
+    // short retention.
+    let app = app(Config {
+        job_time_limit: Duration::from_millis(30),
+        max_finished_jobs: 2,
+        job_retention: Duration::from_secs(1),
+        job_lease: Duration::from_secs(1),
+        ..config
+    });
+    let slow = json!({
+        "analysis": "campbell",
+        "input": slow_input(200),
+        "parameters": [{"pointer": "/rotor/supports/0/damping", "values": [1000, 2000, 3000]}],
+        "design": "grid",
+        "outputs": ["/speeds/0"]
+    });
+    let (id, status, r) = run(&app, &slow).await;
+    assert_eq!(status["counts"]["failed"], 3, "{status}");
+    assert_eq!(status["progress"], 1.0);
+    for s in r["samples"].as_array().unwrap() {
+        assert_eq!(s["status"], "failed");
+        assert_eq!(s["outputs"], json!([null]));
+        assert!(
+            s["error"]["detail"]
+                .as_str()
+                .unwrap()
+                .contains("time limit"),
+            "{s}"
+        );
+    }
+    assert_eq!(r["summary"][0]["null_fraction"], 1.0);
+    assert_eq!(r["summary"][0]["count"], 0);
+    // A grid of 7 samples outlives the bound of 2 finished jobs: samples are the study's.
+    let quick = json!({
+        "analysis": "stability",
+        "input": jeffcott(0.01, 0.02),
+        "parameters": [{"pointer": "/rotor/loss_factor_nonrotating", "values": [0.0, 0.01, 0.02, 0.03, 0.04, 0.05, 0.06]}],
+        "design": "grid",
+        "outputs": ["/threshold"]
+    });
+    let (quick_id, _, r) = run(&app, &quick).await;
+    let thresholds: Vec<f64> = r["samples"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| f(&s["outputs"][0]))
+        .collect();
+    for (t, expected) in thresholds.iter().zip([1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0]) {
+        assert!((t - expected).abs() <= 1e-6 * expected, "{t} vs {expected}");
+    }
+    tokio::time::sleep(Duration::from_millis(600)).await;
+    let (s, r) = json_call(&app, "GET", &format!("/v1/studies/{quick_id}/result"), None).await;
+    assert_eq!(s, StatusCode::OK, "{r}");
+    assert_eq!(
+        r["samples"].as_array().unwrap().len(),
+        7,
+        "no sample purged by the job bound"
+    );
+    // Past the retention, a finished study goes with its samples.
+    let t0 = Instant::now();
+    loop {
+        let (s, _) = json_call(&app, "GET", &format!("/v1/studies/{id}"), None).await;
+        if s == StatusCode::NOT_FOUND {
+            break;
+        }
+        assert!(
+            t0.elapsed() < Duration::from_secs(10),
+            "study {id} still kept"
+        );
+        tokio::time::sleep(Duration::from_millis(100)).await;
+    }
 }

@@ -1,6 +1,7 @@
 //! Studies on replicas sharing PostgreSQL: both replicas compute samples of one study and its
 //! result equals a single server's; a replica killed in mid-study loses no sample (its
-//! running samples are re-queued when their lease runs out and computed by the other).
+//! running samples are re-queued when their lease runs out and computed by the other); a
+//! study outlives a restart of its only server (embedded store).
 //!
 //! Needs PostgreSQL (`WHIRL_TEST_POSTGRES`, default the local server), like
 //! `tests/store_postgres.rs`; each test on a database of its own.
@@ -176,5 +177,33 @@ fn a_replica_killed_in_mid_study_loses_no_sample() {
         db.jobs()
     );
     assert!(b.log().contains("lease expired"));
+    assert_eq!(computed(&result(&b, &id)), expected);
+}
+
+#[test]
+fn a_study_survives_a_restart_of_its_only_server() {
+    let _one = serial();
+    let n = 24;
+    let expected = reference(n);
+    let dir = tempfile::tempdir().unwrap();
+    let data = [("WHIRL_DATA_DIR", dir.path().to_str().unwrap())];
+    let mut a = Server::start(&data);
+    let id = submit(&a, &study(n));
+    let v = wait(
+        &a,
+        &id,
+        |v| v["counts"]["done"].as_u64().unwrap_or(0) >= 2,
+        Duration::from_secs(60),
+    );
+    assert!(
+        v["counts"]["queued"].as_u64().unwrap() >= 1,
+        "stopped in mid-study: {v}"
+    );
+    // SIGTERM: running samples go back to the queue; the next server finishes the study.
+    assert!(a.terminate().success());
+    let b = Server::start(&data);
+    let v = wait(&b, &id, finished, Duration::from_secs(120));
+    assert!(finished(&v), "{v}");
+    assert_eq!(v["counts"]["done"], n, "{v}");
     assert_eq!(computed(&result(&b, &id)), expected);
 }
