@@ -2,11 +2,10 @@
 //! closed-form threshold 1 + eta_n/eta_r (eq. 10 of the paper); Monte Carlo and Latin
 //! hypercube designs repeat with their seed, and the hypercube has one sample per stratum;
 //! bad pointers, designs and sample inputs are refused before any sample is queued; a study
-//! is cancelled with its samples; single jobs go before a study's samples; a failed sample keeps
-//! its error, samples are not purged as single jobs are, and a study past the retention is
-//! forgotten with its samples. In process, each
-//! test with an embedded store of its own. The replicas sharing PostgreSQL are in
-//! `tests/studies_cluster.rs`.
+//! is cancelled with its samples; single jobs go before a study's samples; a failed sample
+//! keeps its error, samples are not purged as single jobs are, and a study past the retention
+//! is forgotten with its samples. In process, each test with an embedded store of its own.
+//! Replicas sharing PostgreSQL, and a restart, are in `tests/studies_cluster.rs`.
 
 use std::time::{Duration, Instant};
 
