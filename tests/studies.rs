@@ -400,6 +400,22 @@ async fn bad_pointers_designs_and_samples_are_refused_before_any_sample_is_queue
     assert_eq!(s, StatusCode::NOT_FOUND);
     let (s, _) = json_call(&app, "GET", "/v1/studies/nonsense", None).await;
     assert_eq!(s, StatusCode::NOT_FOUND);
+    // The samples' inputs and estimated results must fit the bytes of results kept: 200
+    // Jeffcott samples do not fit 64 KiB.
+    let (small, _dir2) = self::config();
+    let app = whirl::service::app(Config {
+        job_result_bytes: 64 << 10,
+        ..small
+    });
+    let values: Vec<f64> = (0..100).map(|i| 0.0002 * f64::from(i)).collect();
+    let v = refused(&app, &grid("/rotor/loss_factor_nonrotating", json!(values))).await;
+    assert_eq!(paths(&v), ["samples"]);
+    let m = v["errors"][0]["message"].as_str().unwrap();
+    assert!(
+        m.starts_with("200 samples whose inputs and results")
+            && m.contains("WHIRL_JOB_RESULT_BYTES"),
+        "{m}"
+    );
 }
 
 /// A Campbell sweep of a few hundred ms: a sample that is still queued or running for a while.

@@ -25,7 +25,7 @@ use crate::studies::{Study, pointer, summary};
 pub struct StudyLimits {
     /// Each sample's input is parsed with these.
     pub limits: Limits,
-    /// Compressed bytes of results kept (`WHIRL_JOB_RESULT_BYTES`): the samples' estimated
+    /// Compressed bytes of results kept (`WHIRL_JOB_RESULT_BYTES`): the samples' inputs and
     /// results together must fit.
     pub result_bytes: u64,
 }
@@ -118,28 +118,35 @@ fn check_samples(
             .and_then(|i| i.parse(&limits.limits).map_err(ApiError::from))
             .map_err(named)?;
         let (lane, memory_mib) = pool.needs(&task.cost, task.size_field()).map_err(named)?;
-        bytes = bytes.saturating_add(task.cost.response_bytes);
+        let input = serde_json::to_string(&input).map_err(internal)?;
+        bytes = bytes
+            .saturating_add(task.cost.response_bytes)
+            .saturating_add(input.len() as u64);
         out.push(NewSample {
             id: uuid::Uuid::now_v7().to_string(),
-            input: serde_json::to_string(&input).map_err(internal)?,
+            input,
             parameters: serde_json::to_string(values).map_err(internal)?,
             lane,
             memory_mib,
         });
     }
     if bytes > limits.result_bytes {
-        return Err(ApiError::Invalid(Invalid::one(
-            "samples",
-            format!(
-                "{} samples whose results would take about {} MB, more than the {} MB of \
-                 results kept (WHIRL_JOB_RESULT_BYTES): fewer samples or a smaller analysis",
-                plan.len(),
-                bytes.div_ceil(1 << 20),
-                limits.result_bytes >> 20
-            ),
-        )));
+        return Err(too_large(plan.len(), bytes, limits));
     }
     Ok(out)
+}
+
+/// 422: the samples would take more than the bytes kept.
+fn too_large(samples: usize, bytes: u64, limits: StudyLimits) -> ApiError {
+    ApiError::Invalid(Invalid::one(
+        "samples",
+        format!(
+            "{samples} samples whose inputs and results would take about {} MB, more than the \
+             {} MB of results kept (WHIRL_JOB_RESULT_BYTES): fewer samples or a smaller analysis",
+            bytes.div_ceil(1 << 20),
+            limits.result_bytes >> 20
+        ),
+    ))
 }
 
 /// A sample's outputs from its stored result (all null unless it succeeded).
@@ -175,6 +182,15 @@ impl Jobs {
     ) -> Result<StudyInfo, ApiError> {
         if !self.runner.accepting() {
             return Err(ApiError::Busy);
+        }
+        // The inputs alone past the bound: refused before thousands of them are written.
+        let one = serde_json::to_string(&study.input).map_err(internal)?.len() as u64;
+        if one.saturating_mul(study.samples as u64) > limits.result_bytes {
+            return Err(too_large(
+                study.samples,
+                one.saturating_mul(study.samples as u64),
+                limits,
+            ));
         }
         let mut stored = req.clone();
         stored.seed = Some(study.seed);

@@ -149,7 +149,7 @@ pub const SETTINGS: &[Setting] = &[
     Setting {
         var: "WHIRL_MAX_STUDY_SAMPLES",
         default: "5000",
-        meaning: "most samples of one study (POST /v1/studies); their estimated results together must also fit WHIRL_JOB_RESULT_BYTES",
+        meaning: "most samples of one study (POST /v1/studies); their inputs and estimated results together must also fit WHIRL_JOB_RESULT_BYTES",
     },
     Setting {
         var: "WHIRL_JOB_RESULT_BYTES",
