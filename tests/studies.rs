@@ -573,3 +573,66 @@ async fn failed_samples_keep_their_error_and_a_study_is_forgotten_with_its_sampl
         tokio::time::sleep(Duration::from_millis(100)).await;
     }
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_study_of_many_samples_is_read_back_whole_and_in_order() {
+    let (config, _dir) = config();
+    let app = app(config);
+    // 15 x 30 = 450 samples: the result is read from the store in pages of 200.
+    let eta_r: Vec<f64> = (1..=15).map(|i| 0.002 * f64::from(i)).collect();
+    // (Steps that put no threshold at the sweep's end, 10, where it is found or not.)
+    let eta_n: Vec<f64> = (0..30).map(|i| 0.0011 * f64::from(i)).collect();
+    let study = json!({
+        "analysis": "stability",
+        "input": jeffcott(0.01, 0.02),
+        "parameters": [
+            {"pointer": "/rotor/loss_factor_rotating", "values": eta_r},
+            {"pointer": "/rotor/loss_factor_nonrotating", "values": eta_n}
+        ],
+        "design": "grid",
+        "outputs": ["/threshold"]
+    });
+    let (_, _, r) = run(&app, &study).await;
+    let samples = r["samples"].as_array().unwrap();
+    assert_eq!(samples.len(), 450);
+    let mut nulls = 0;
+    for (k, s) in samples.iter().enumerate() {
+        assert_eq!(s["sample"], k);
+        let (r_, n) = (eta_r[k / 30], eta_n[k % 30]);
+        // (serde_json reads a decimal to within an ulp: not always the f64 written.)
+        let (pr, pn) = (f(&s["parameters"][0]), f(&s["parameters"][1]));
+        assert!(
+            (pr - r_).abs() <= 1e-15 * r_ && (pn - n).abs() <= 1e-15 * n.max(1e-3),
+            "{s}"
+        );
+        let expected = 1.0 + n / r_;
+        match s["outputs"][0].as_f64() {
+            Some(t) => assert!(
+                (t - expected).abs() <= 1e-6 * expected,
+                "{k}: {t} vs {expected}"
+            ),
+            None => {
+                assert!(expected > 10.0, "{k}: {s}");
+                nulls += 1;
+            }
+        }
+    }
+    // No threshold in range where 1 + n/r > 10 (the sweep ends at 10).
+    let expected_nulls = eta_r
+        .iter()
+        .flat_map(|r_| eta_n.iter().map(move |n| 1.0 + n / r_))
+        .filter(|t| *t > 10.0)
+        .count();
+    assert_eq!(nulls, expected_nulls);
+    assert_eq!(r["summary"][0]["count"], 450 - expected_nulls);
+    assert!(
+        f(&r["sensitivity"][0]["spearman"]) < -0.3,
+        "{}",
+        r["sensitivity"]
+    );
+    assert!(
+        f(&r["sensitivity"][1]["spearman"]) > 0.3,
+        "{}",
+        r["sensitivity"]
+    );
+}

@@ -15,7 +15,8 @@ use super::store::studies::{NewSample, NewStudy, SampleRow, StudyRow};
 use super::{Jobs, job_input, rfc3339_ms, stopped};
 use crate::answer::ApiError;
 use crate::model::api::{
-    JobStatus, StudyCounts, StudyInfo, StudyRequest, StudyResult, StudySample, StudyStatus,
+    JobStatus, StudyCounts, StudyDesign, StudyInfo, StudyRequest, StudyResult, StudySample,
+    StudyStatus,
 };
 use crate::model::{Invalid, Limits};
 use crate::studies::{Study, pointer, summary};
@@ -29,6 +30,9 @@ pub struct StudyLimits {
     /// results together must fit.
     pub result_bytes: u64,
 }
+
+/// Samples read from the store at once for a result.
+const PAGE: usize = 200;
 
 fn not_found(id: &str) -> ApiError {
     ApiError::NotFound(format!(
@@ -149,6 +153,22 @@ fn too_large(samples: usize, bytes: u64, limits: StudyLimits) -> ApiError {
     ))
 }
 
+/// A sample as the result shows it.
+fn sample(r: &SampleRow, pointers: &[String]) -> StudySample {
+    StudySample {
+        sample: r.sample.max(0) as u64,
+        status: r.status,
+        parameters: serde_json::from_str(&r.parameters).unwrap_or_default(),
+        outputs: outputs(r, pointers),
+        // A sample cancelled while running was not computed there.
+        server: r
+            .worker
+            .clone()
+            .filter(|_| r.status != JobStatus::Cancelled),
+        error: r.error.clone(),
+    }
+}
+
 /// A sample's outputs from its stored result (all null unless it succeeded).
 fn outputs(row: &SampleRow, pointers: &[String]) -> Vec<Value> {
     let nulls = || vec![Value::Null; pointers.len()];
@@ -239,44 +259,35 @@ impl Jobs {
                 info.samples
             )));
         }
-        let req = request(&row)?;
-        let rows = self.store.study_samples(id).await?;
-        let id = id.to_string();
-        tokio::task::spawn_blocking(move || {
-            let parameters: Vec<String> =
-                req.parameters.iter().map(|p| p.pointer.clone()).collect();
-            let samples: Vec<StudySample> = rows
-                .iter()
-                .map(|r| StudySample {
-                    sample: r.sample.max(0) as u64,
-                    status: r.status,
-                    parameters: serde_json::from_str(&r.parameters).unwrap_or_default(),
-                    outputs: outputs(r, &req.outputs),
-                    server: r
-                        .worker
-                        .clone()
-                        .filter(|_| r.status != JobStatus::Cancelled),
-                    error: r.error.clone(),
-                })
-                .collect();
-            let (summary, sensitivity) = summary::summarize(&samples, &parameters, &req.outputs);
-            StudyResult {
-                id,
-                analysis: info.analysis,
-                design: req.design,
-                status: info.status,
-                seed: req
-                    .seed
-                    .filter(|_| req.design != crate::model::api::StudyDesign::Grid),
-                parameters,
-                outputs: req.outputs,
-                samples,
-                summary,
-                sensitivity,
-            }
+        let req = Arc::new(request(&row)?);
+        // A page of samples at a time: only their outputs are kept, not their results.
+        let mut samples: Vec<StudySample> = Vec::with_capacity(info.samples as usize);
+        for from in (0..row.samples.max(0)).step_by(PAGE) {
+            let rows = self.store.study_samples(id, from, PAGE as i64).await?;
+            let req = req.clone();
+            let page = tokio::task::spawn_blocking(move || {
+                rows.iter()
+                    .map(|r| sample(r, &req.outputs))
+                    .collect::<Vec<_>>()
+            })
+            .await
+            .map_err(internal)?;
+            samples.extend(page);
+        }
+        let parameters: Vec<String> = req.parameters.iter().map(|p| p.pointer.clone()).collect();
+        let (summary, sensitivity) = summary::summarize(&samples, &parameters, &req.outputs);
+        Ok(StudyResult {
+            id: id.to_string(),
+            analysis: info.analysis,
+            design: req.design,
+            status: info.status,
+            seed: req.seed.filter(|_| req.design != StudyDesign::Grid),
+            parameters,
+            outputs: req.outputs.clone(),
+            samples,
+            summary,
+            sensitivity,
         })
-        .await
-        .map_err(internal)
     }
 
     /// Cancels a study: recorded as cancelled, its queued and running samples cancelled (each

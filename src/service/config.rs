@@ -533,9 +533,10 @@ mod tests {
             "WHIRL_PUBLIC_URL",
             "WHIRL_API_TOKEN",
             "WHIRL_MAX_CONNECTIONS_PER_CLIENT",
+            "WHIRL_MAX_STUDY_SAMPLES",
         ] {
             assert_eq!(vars.iter().filter(|x| **x == v).count(), 1, "{v}");
         }
-        assert_eq!(vars.len(), 31);
+        assert_eq!(vars.len(), 32);
     }
 }

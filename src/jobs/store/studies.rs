@@ -79,9 +79,15 @@ impl Store {
         on_engine!(self, e => e.study(id))
     }
 
-    /// Every sample of a study, by index.
-    pub async fn study_samples(&self, id: &str) -> Result<Vec<SampleRow>, StoreError> {
-        on_engine!(self, e => e.study_samples(id))
+    /// The samples `from..from + count` of a study, by index (a page: their results are
+    /// held in memory).
+    pub async fn study_samples(
+        &self,
+        id: &str,
+        from: i64,
+        count: i64,
+    ) -> Result<Vec<SampleRow>, StoreError> {
+        on_engine!(self, e => e.study_samples(id, from, count))
     }
 
     /// Records a study as cancelled with `error` and cancels its queued and running samples;

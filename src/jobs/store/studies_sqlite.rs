@@ -79,13 +79,21 @@ impl Sqlite {
         }))
     }
 
-    pub async fn study_samples(&self, id: &str) -> Result<Vec<SampleRow>, sqlx::Error> {
+    pub async fn study_samples(
+        &self,
+        id: &str,
+        from: i64,
+        count: i64,
+    ) -> Result<Vec<SampleRow>, sqlx::Error> {
         let rows = sqlx::query(
             "SELECT j.sample, j.status, j.worker, j.error, j.parameters, c.data \
              FROM jobs j LEFT JOIN job_chunks c ON c.job_id = j.id AND j.status = 'succeeded' \
-             WHERE j.study_id = ?1 ORDER BY j.sample, c.seq",
+             WHERE j.study_id = ?1 AND j.sample >= ?2 AND j.sample < ?2 + ?3 \
+             ORDER BY j.sample, c.seq",
         )
         .bind(id)
+        .bind(from)
+        .bind(count)
         .fetch_all(&self.pool)
         .await?;
         let mut out: Vec<SampleRow> = vec![];
