@@ -41,7 +41,6 @@ pub struct StudyParameter {
     pub pointer: String,
     /// The values of a grid (any JSON: numbers, or e.g. damping model names).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    #[schema(value_type = Option<Vec<Object>>)]
     pub values: Option<Vec<Value>>,
     /// The distribution of a random design.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -148,11 +147,9 @@ pub struct StudySample {
     pub sample: u64,
     pub status: JobStatus,
     /// The value of each parameter, in the order of `parameters`.
-    #[schema(value_type = Vec<Object>)]
     pub parameters: Vec<Value>,
     /// The value at each output pointer, in the order of `outputs`; null where the pointer
     /// finds nothing or the sample did not succeed.
-    #[schema(value_type = Vec<Object>)]
     pub outputs: Vec<Value>,
     /// The replica that computed it.
     #[serde(skip_serializing_if = "Option::is_none")]
