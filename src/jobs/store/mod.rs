@@ -34,6 +34,9 @@
 //! - **Retention** is enforced in the store: finished jobs older than `retention` are not
 //!   returned and are deleted, and beyond `max_finished` jobs or `max_bytes` of results the
 //!   oldest finished are deleted (their chunks with them).
+//! - **Studies** ([`studies`]): a study's samples are jobs naming it, claimed after every
+//!   single job, outside admission, the listing and the retention of single jobs (they go
+//!   with their study); [`Store::queued`] (admission, `/readyz`) counts single jobs.
 //! - **Lazy connection.** The first use connects and migrates; a failure is returned (503)
 //!   and retried at the next use, so a server starts without its database and `/readyz` says
 //!   so.
