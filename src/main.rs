@@ -50,7 +50,7 @@ fn main() -> ExitCode {
     let arg = std::env::args().nth(1);
     match arg.as_deref() {
         None | Some("serve") => serve(),
-        Some("openapi") => match service::openapi_document().to_pretty_json() {
+        Some("openapi") => match serde_json::to_string_pretty(&service::openapi_document()) {
             Ok(s) => print(&(s + "\n")),
             Err(e) => {
                 eprintln!("whirl: {e}");

@@ -99,7 +99,7 @@ impl AppState {
 }
 
 /// The router with its OpenAPI document (`split_for_parts` keeps them in sync by construction).
-pub fn router(state: AppState) -> (Router, utoipa::openapi::OpenApi) {
+pub fn router(state: AppState) -> (Router, serde_json::Value) {
     let limits = json::BodyLimits {
         max_bytes: state.config.max_body_bytes,
         timeout: state.config.body_timeout,
@@ -136,17 +136,22 @@ pub fn router(state: AppState) -> (Router, utoipa::openapi::OpenApi) {
         .with_state(state.clone())
         .split_for_parts();
     // After the routes: utoipa-axum replaces the component schemas as it registers each one.
-    let api = openapi::secured(openapi::for_clients(api));
+    let api = openapi::secured(api);
+    let allowed = Arc::new(allowed_methods(&api));
+    // Served as JSON from here on: utoipa's types cannot read back an untyped schema (`{}`, the
+    // items of an array of any JSON), so the finished document never returns to them.
+    let doc =
+        openapi::for_clients(serde_json::to_value(&api).expect("the OpenAPI document serialises"));
     let request_id = axum::http::HeaderName::from_static("x-request-id");
     let router = router
-        .merge(SwaggerUi::new("/docs").url("/openapi.json", api.clone()))
+        .merge(SwaggerUi::new("/docs").external_url_unchecked("/openapi.json", doc.clone()))
         .route_layer(axum::middleware::from_fn(metrics::label))
         .fallback(routes::not_found)
         .layer(DefaultBodyLimit::max(limits.max_bytes))
         .layer(axum::Extension(limits))
         .layer(axum::middleware::from_fn_with_state(limits, refuse_large_bodies))
         .layer(axum::middleware::from_fn_with_state(
-            Arc::new(allowed_methods(&api)),
+            allowed,
             method_problems,
         ))
         .layer(axum::middleware::from_fn_with_state(
@@ -184,7 +189,7 @@ pub fn router(state: AppState) -> (Router, utoipa::openapi::OpenApi) {
         Some(layer) => router.layer(layer),
         None => router,
     };
-    (router, api)
+    (router, doc)
 }
 
 /// One log line per response, at a level by its status: a 503 is the service shedding load as
@@ -308,6 +313,6 @@ pub fn app_with_state(config: Config) -> (Router, AppState) {
 
 /// The OpenAPI document the server serves (also committed as `openapi/openapi.json`); the
 /// store is never touched.
-pub fn openapi_document() -> utoipa::openapi::OpenApi {
+pub fn openapi_document() -> serde_json::Value {
     router(AppState::new(Config::default())).1
 }

@@ -25,13 +25,11 @@
 use std::collections::BTreeSet;
 
 use serde_json::{Map, Value, json};
-use utoipa::openapi::OpenApi;
 
 const REF: &str = "#/components/schemas/";
 
 /// The document, finished for client generators.
-pub fn for_clients(api: OpenApi) -> OpenApi {
-    let mut doc = serde_json::to_value(&api).expect("the OpenAPI document serialises");
+pub fn for_clients(mut doc: Value) -> Value {
     tagged_unions(&mut doc);
     jobs(&mut doc);
     let job_schemas: Vec<(String, String)> = analyses(&doc)
@@ -44,7 +42,7 @@ pub fn for_clients(api: OpenApi) -> OpenApi {
     super::examples::add(&mut doc, &job_schemas);
     strict_inputs(&mut doc);
     prune(&mut doc);
-    serde_json::from_value(doc).expect("the finished OpenAPI document deserialises")
+    doc
 }
 
 fn schemas(doc: &mut Value) -> &mut Map<String, Value> {
@@ -392,7 +390,9 @@ fn is_object(v: &Value) -> bool {
 
 fn close_objects(v: &mut Value) {
     if is_object(v) && v.get("additionalProperties").is_none() {
-        v["additionalProperties"] = json!(false);
+        // An object without properties is any object (a study's `input`): closing it would
+        // leave nothing a client could send.
+        v["additionalProperties"] = json!(v.get("properties").is_none());
     }
     let Some(m) = v.as_object_mut() else { return };
     for (key, sub) in m.iter_mut() {
