@@ -636,3 +636,50 @@ async fn a_study_of_many_samples_is_read_back_whole_and_in_order() {
         r["sensitivity"]
     );
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_samples_of_all_studies_waiting_are_bounded() {
+    let (config, _dir) = config();
+    let app = app(Config {
+        workers: 1,
+        study_queue: 12,
+        ..config
+    });
+    let study = |n: usize| {
+        json!({
+            "analysis": "campbell",
+            "input": slow_input(8),
+            "parameters": [{"pointer": "/rotor/supports/0/damping",
+                            "values": (0..n).map(|i| 1000 + 100 * i).collect::<Vec<_>>()}],
+            "design": "grid",
+            "outputs": ["/speeds/0"]
+        })
+    };
+    // Larger than the queue could ever hold: the request's fault.
+    let v = refused(&app, &study(13)).await;
+    assert_eq!(paths(&v), ["samples"], "{v}");
+    assert!(
+        v["errors"][0]["message"]
+            .as_str()
+            .unwrap()
+            .contains("WHIRL_STUDY_QUEUE"),
+        "{v}"
+    );
+    let (s, first) = json_call(&app, "POST", "/v1/studies", Some(&study(10))).await;
+    assert_eq!(s, StatusCode::ACCEPTED, "{first}");
+    // At least 8 of its samples still wait (one worker, slow samples): 8 + 5 > 12.
+    let (s, h, body) = call(&app, "POST", "/v1/studies", Some(&study(5)), None).await;
+    assert_eq!(s, StatusCode::SERVICE_UNAVAILABLE);
+    assert!(h.contains_key(header::RETRY_AFTER));
+    let v: Value = serde_json::from_slice(&body).unwrap();
+    assert_eq!(v["status"], 503, "{v}");
+    // Once the first is cancelled, the queue has room again.
+    let id = first["id"].as_str().unwrap();
+    let (s, _) = json_call(&app, "DELETE", &format!("/v1/studies/{id}"), None).await;
+    assert_eq!(s, StatusCode::OK);
+    let (s, second) = json_call(&app, "POST", "/v1/studies", Some(&study(5))).await;
+    assert_eq!(s, StatusCode::ACCEPTED, "{second}");
+    let id = second["id"].as_str().unwrap();
+    let (s, _) = json_call(&app, "DELETE", &format!("/v1/studies/{id}"), None).await;
+    assert_eq!(s, StatusCode::OK);
+}

@@ -29,6 +29,8 @@ pub struct StudyLimits {
     /// Compressed bytes of results kept (`WHIRL_JOB_RESULT_BYTES`): the samples' inputs and
     /// results together must fit.
     pub result_bytes: u64,
+    /// Samples of all studies waiting in the shared queue (`WHIRL_STUDY_QUEUE`).
+    pub queue: usize,
 }
 
 /// Samples read from the store at once for a result.
@@ -203,6 +205,17 @@ impl Jobs {
         if !self.runner.accepting() {
             return Err(ApiError::Busy);
         }
+        // A study the shared queue could never hold is the request's fault, not a wait.
+        if study.samples > limits.queue {
+            return Err(ApiError::Invalid(Invalid::one(
+                "samples",
+                format!(
+                    "{} samples, more than the {} samples of all studies the queue holds \
+                     (WHIRL_STUDY_QUEUE)",
+                    study.samples, limits.queue
+                ),
+            )));
+        }
         // The inputs alone past the bound: refused before thousands of them are written.
         let one = serde_json::to_string(&study.input).map_err(internal)?.len() as u64;
         if one.saturating_mul(study.samples as u64) > limits.result_bytes {
@@ -230,7 +243,13 @@ impl Jobs {
             analysis: name.as_str().unwrap_or_default(),
             request: &request,
         };
-        self.store.submit_study(&new, &samples).await?;
+        if !self
+            .store
+            .submit_study(&new, &samples, limits.queue)
+            .await?
+        {
+            return Err(ApiError::Busy);
+        }
         tracing::info!(study = %id, samples = samples.len(), "study queued");
         let runner = self.runner.clone();
         let _ = tokio::spawn(async move { runner.claim_pass().await }).await;

@@ -29,6 +29,8 @@ pub struct Config {
     pub max_finished_jobs: usize,
     /// Most samples of one study.
     pub max_study_samples: usize,
+    /// Most samples of all studies waiting in the shared queue.
+    pub study_queue: usize,
     /// Compressed bytes of finished jobs' results kept.
     pub job_result_bytes: u64,
     pub job_time_limit: Duration,
@@ -152,6 +154,11 @@ pub const SETTINGS: &[Setting] = &[
         meaning: "most samples of one study (POST /v1/studies); their inputs and estimated results together must also fit WHIRL_JOB_RESULT_BYTES",
     },
     Setting {
+        var: "WHIRL_STUDY_QUEUE",
+        default: "20000",
+        meaning: "samples of all studies waiting in the shared queue (all replicas); a study that would take it past this waits: 503 with Retry-After (one larger than it: 422)",
+    },
+    Setting {
         var: "WHIRL_JOB_RESULT_BYTES",
         default: "268435456",
         meaning: "compressed bytes of finished results kept (oldest forgotten first)",
@@ -248,6 +255,7 @@ impl Default for Config {
             job_retention: Duration::from_secs(3600),
             max_finished_jobs: 1000,
             max_study_samples: 5000,
+            study_queue: 20000,
             job_result_bytes: 256 << 20,
             job_time_limit: Duration::from_secs(600),
             shutdown_grace: Duration::from_secs(30),
@@ -459,6 +467,7 @@ impl Config {
             job_retention: seconds(&get, "WHIRL_JOB_RETENTION", d.job_retention, 1.0)?,
             max_finished_jobs: num(&get, "WHIRL_MAX_FINISHED_JOBS", d.max_finished_jobs, 1)?,
             max_study_samples: num(&get, "WHIRL_MAX_STUDY_SAMPLES", d.max_study_samples, 1)?,
+            study_queue: num(&get, "WHIRL_STUDY_QUEUE", d.study_queue, 1)?,
             job_result_bytes: bytes("WHIRL_JOB_RESULT_BYTES", d.job_result_bytes)?,
             job_time_limit: seconds(&get, "WHIRL_JOB_TIME_LIMIT", d.job_time_limit, 0.1)?,
             shutdown_grace: seconds(&get, "WHIRL_SHUTDOWN_GRACE", d.shutdown_grace, 0.0)?,
@@ -534,9 +543,10 @@ mod tests {
             "WHIRL_API_TOKEN",
             "WHIRL_MAX_CONNECTIONS_PER_CLIENT",
             "WHIRL_MAX_STUDY_SAMPLES",
+            "WHIRL_STUDY_QUEUE",
         ] {
             assert_eq!(vars.iter().filter(|x| **x == v).count(), 1, "{v}");
         }
-        assert_eq!(vars.len(), 32);
+        assert_eq!(vars.len(), 33);
     }
 }

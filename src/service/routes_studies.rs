@@ -61,7 +61,7 @@ fn with_base(base: &Base, mut info: StudyInfo) -> StudyInfo {
         (status = 413, description = "Body too large", body = Problem, content_type = "application/problem+json"),
         (status = 415, description = "The body is not declared as JSON", body = Problem, content_type = "application/problem+json"),
         (status = 422, description = "A bad pointer, design, distribution or sample input, or too many samples (`errors` names the field)", body = Problem, content_type = "application/problem+json"),
-        (status = 503, description = "The server is stopping, or the job store is unreachable; see Retry-After", body = Problem, content_type = "application/problem+json")))]
+        (status = 503, description = "The server is stopping, the samples of all studies waiting would exceed WHIRL_STUDY_QUEUE, or the job store is unreachable; see Retry-After", body = Problem, content_type = "application/problem+json")))]
 pub async fn submit_study(
     State(st): State<AppState>,
     base: Base,
@@ -73,6 +73,7 @@ pub async fn submit_study(
     let limits = StudyLimits {
         limits: st.config.limits(),
         result_bytes: st.config.job_result_bytes,
+        queue: st.config.study_queue,
     };
     let info = st
         .jobs

@@ -17,7 +17,7 @@ use super::{
 /// Connections per replica.
 const CONNECTIONS: u32 = 8;
 /// Serialises admission over all replicas (an arbitrary key: "whirl" in ASCII).
-const ADMISSION_LOCK: i64 = 0x0077_6869_726c;
+pub(super) const ADMISSION_LOCK: i64 = 0x0077_6869_726c;
 
 /// The columns of a [`JobRow`], times in ms since the epoch.
 const ROW: &str = "id, analysis, status, progress, \

@@ -65,13 +65,15 @@ pub struct SampleRow {
 }
 
 impl Store {
-    /// Inserts a study and its samples (queued), all or nothing.
+    /// Inserts a study and its samples (queued), all or nothing; `false` (nothing inserted)
+    /// when the samples of all studies waiting would then be more than `queue`.
     pub async fn submit_study(
         &self,
         study: &NewStudy<'_>,
         samples: &[NewSample],
-    ) -> Result<(), StoreError> {
-        on_engine!(self, e => e.submit_study(study, samples))
+        queue: usize,
+    ) -> Result<bool, StoreError> {
+        on_engine!(self, e => e.submit_study(study, samples, queue))
     }
 
     /// A study with its counts, unless unknown or purged.

@@ -11,9 +11,19 @@ impl Sqlite {
         &self,
         study: &NewStudy<'_>,
         samples: &[NewSample],
-    ) -> Result<(), sqlx::Error> {
+        queue: usize,
+    ) -> Result<bool, sqlx::Error> {
         let now = now_ms();
+        // The pool's one connection: nothing comes between the count and the inserts.
         let mut tx = self.pool.begin().await?;
+        let waiting: i64 = sqlx::query_scalar(
+            "SELECT count(*) FROM jobs WHERE status = 'queued' AND study_id IS NOT NULL",
+        )
+        .fetch_one(&mut *tx)
+        .await?;
+        if waiting + samples.len() as i64 > queue as i64 {
+            return Ok(false);
+        }
         sqlx::query(
             "INSERT INTO studies (id, analysis, request, samples, created_at) \
              VALUES (?1, ?2, ?3, ?4, ?5)",
@@ -44,7 +54,8 @@ impl Sqlite {
             });
             q.build().execute(&mut *tx).await?;
         }
-        tx.commit().await
+        tx.commit().await?;
+        Ok(true)
     }
 
     pub async fn study(&self, id: &str) -> Result<Option<StudyRow>, sqlx::Error> {
