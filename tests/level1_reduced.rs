@@ -1,6 +1,7 @@
 //! API 617 Level I on the checked modal reduction equals Level I on the full model: every
 //! point of the curve and q0, on isotropic and cross-coupled anisotropic bearings, under the
-//! viscous, hysteretic and equivalent models.
+//! viscous, hysteretic and equivalent models, and under the nonviscous model (its check compares
+//! the rotor poles, the full model's found by shift-invert Arnoldi).
 
 mod common;
 
@@ -22,12 +23,17 @@ fn anisotropic() -> Value {
 }
 
 fn case(name: &str, rotor: Value, nodes: &[usize]) {
-    let system = assemble(rotor);
-    for d in [
+    let models = [
         json!({"model": "viscous"}),
         json!({"model": "hysteretic"}),
         json!({"model": "equivalent"}),
-    ] {
+    ];
+    case_of(name, rotor, nodes, &models);
+}
+
+fn case_of(name: &str, rotor: Value, nodes: &[usize], models: &[Value]) {
+    let system = assemble(rotor);
+    for d in models.iter().cloned() {
         let input: DampingInput = serde_json::from_value(d.clone()).unwrap();
         let model = DampingModel::parse(&input, Some(system.n())).unwrap();
         let full = DampedModel::build(&system, &model).unwrap();
@@ -81,4 +87,14 @@ fn isotropic_rotor() {
 #[test]
 fn cross_coupled_anisotropic_bearings() {
     case("anisotropic", anisotropic(), &[20]);
+}
+
+#[test]
+fn nonviscous_model() {
+    case_of(
+        "rotor_6",
+        heldout(6, 0.002),
+        &[12, 40],
+        &[json!({"model": "nonviscous"})],
+    );
 }
