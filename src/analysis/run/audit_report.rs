@@ -1,9 +1,12 @@
-//! The report: its analyses one after the other, its unbalance cases, and its bearing sets.
+//! The report: its analyses two at a time, its unbalance cases, and its bearing sets.
 
 use super::*;
 
 /// A report's parts, its unbalance cases and, for each bearing set, the same.
 ///
+/// Its analyses do not depend on each other: they run in two lanes at once (see [`lanes`]),
+/// which matters where one model's checks are long single-threaded eigensolves (the
+/// nonviscous model's full check on a 100-element rotor) while the other lane runs the rest.
 /// Each analysis fills a share of the progress in proportion to its estimated work (the
 /// cases take [`MAX_CASES`] unbalance responses' share), so progress never goes back when
 /// the next analysis announces its own work.
@@ -15,24 +18,18 @@ pub(super) fn run_report(plan: &ReportPlan, control: &Control) -> Result<Outcome
         at += work;
         (from, at / total)
     };
-    let mut step = |task: &Task| {
-        let (from, to) = share(work(task));
-        control.part(from, to, || run(task, control))
-    };
-    let mut parts = vec![
-        step(&plan.map)?,
-        step(&plan.statics)?,
-        step(&plan.campbell)?,
-        step(&plan.unbalance)?,
-    ];
+    let tasks = plan.run_tasks();
+    let (from, to) = share(tasks.iter().map(|t| work(t)).sum());
+    let mut done = control
+        .part(from, to, || lanes(&tasks, control))?
+        .into_iter();
+    let mut next = || done.next().expect("one outcome per analysis");
+    let mut parts = vec![next(), next(), next(), next()];
     for m in &plan.models {
-        let level1 = step(&m.level1)?;
         if m.primary {
-            parts.extend([parts[2].clone(), level1, parts[3].clone()]);
+            parts.extend([parts[2].clone(), next(), parts[3].clone()]);
         } else {
-            parts.push(step(&m.campbell)?);
-            parts.push(level1);
-            parts.push(step(&m.unbalance)?);
+            parts.extend([next(), next(), next()]);
         }
     }
     let (from, to) = share(cases_work(plan));
@@ -47,6 +44,54 @@ pub(super) fn run_report(plan: &ReportPlan, control: &Control) -> Result<Outcome
     Ok(Outcome::Report { parts, cases, sets })
 }
 
+/// Runs `tasks` in two lanes, each one task at a time, the largest estimated work first onto
+/// the lane with less: two analyses hold memory at once at most (the report's estimate counts
+/// the two largest), and each still spreads its own speeds over the pool. Progress counts of
+/// both fill the one share. The outcomes in the order of `tasks`.
+fn lanes(tasks: &[&Task], control: &Control) -> Result<Vec<Outcome>, RunError> {
+    if rayon::current_num_threads() < 2 {
+        return tasks.iter().map(|t| run(t, control)).collect();
+    }
+    let mut order: Vec<usize> = (0..tasks.len()).collect();
+    order.sort_by(|&a, &b| work(tasks[b]).total_cmp(&work(tasks[a])));
+    let (mut lane, mut load) = ([vec![], vec![]], [0.0, 0.0]);
+    for i in order {
+        let l = usize::from(load[1] < load[0]);
+        load[l] += work(tasks[i]);
+        lane[l].push(i);
+    }
+    let failed = std::sync::atomic::AtomicBool::new(false);
+    let run_lane = |ids: &[usize]| -> Vec<(usize, Result<Outcome, RunError>)> {
+        let mut out = vec![];
+        for &i in ids {
+            // The other lane failed: the report fails with its error, nothing more to run.
+            if failed.load(std::sync::atomic::Ordering::Relaxed) {
+                break;
+            }
+            let r = run(tasks[i], control);
+            if r.is_err() {
+                failed.store(true, std::sync::atomic::Ordering::Relaxed);
+            }
+            out.push((i, r));
+        }
+        out
+    };
+    let (a, b) = rayon::join(|| run_lane(&lane[0]), || run_lane(&lane[1]));
+    let mut all: Vec<(usize, Result<Outcome, RunError>)> = a.into_iter().chain(b).collect();
+    // The first error in the tasks' order, as the sequential report would have met it.
+    all.sort_by_key(|(i, _)| *i);
+    let mut outs = Vec::with_capacity(tasks.len());
+    for (_, r) in all {
+        outs.push(r?);
+    }
+    if outs.len() < tasks.len() {
+        return Err(RunError::Unsolvable(
+            "report: an analysis did not run".into(),
+        ));
+    }
+    Ok(outs)
+}
+
 /// A task's estimated work for the report's progress (at least one unit: every analysis
 /// takes some time).
 fn work(task: &Task) -> f64 {
@@ -59,17 +104,8 @@ fn cases_work(plan: &ReportPlan) -> f64 {
 
 /// The work of everything [`run_report`] runs.
 fn report_work(plan: &ReportPlan) -> f64 {
-    let mut total = [&plan.map, &plan.statics, &plan.campbell, &plan.unbalance]
-        .into_iter()
-        .map(work)
-        .sum::<f64>();
-    for m in &plan.models {
-        total += work(&m.level1);
-        if !m.primary {
-            total += work(&m.campbell) + work(&m.unbalance);
-        }
-    }
-    total + cases_work(plan) + plan.sets.iter().map(|(_, s)| report_work(s)).sum::<f64>()
+    let analyses: f64 = plan.run_tasks().iter().map(|t| work(t)).sum();
+    analyses + cases_work(plan) + plan.sets.iter().map(|(_, s)| report_work(s)).sum::<f64>()
 }
 
 /// The report's unbalance cases (see [`cases`]): one per forward critical speed of its

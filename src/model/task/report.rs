@@ -46,8 +46,9 @@ impl ReportPlan {
         all
     }
 
-    /// The tasks that run (a model's parts equal to the report's are not run twice).
-    fn run_tasks(&self) -> Vec<&Task> {
+    /// The tasks that run (a model's parts equal to the report's are not run twice), in the
+    /// order of the report's parts.
+    pub fn run_tasks(&self) -> Vec<&Task> {
         let mut all = vec![&self.map, &self.statics, &self.campbell, &self.unbalance];
         for m in &self.models {
             if m.primary {
@@ -342,17 +343,22 @@ fn rotor_mass(rotor: &BeamRotor) -> f64 {
     rotor.shaft_mass() + rotor.disks().iter().map(|d| d.mass).sum::<f64>()
 }
 
-/// Tasks run one after the other: the largest heap, the sum of the work and the answers.
+/// Tasks run two at a time (`analysis::run`'s report lanes): the two largest heaps, the sum
+/// of the work and the answers.
 fn combined(tasks: &[&Task]) -> Cost {
     let mut c = tasks[0].cost;
+    let mut second = 0;
     for t in &tasks[1..] {
         if t.cost.peak_bytes > c.peak_bytes {
+            second = c.peak_bytes;
             c.size = t.cost.size;
             c.peak_bytes = t.cost.peak_bytes;
+        } else {
+            second = second.max(t.cost.peak_bytes);
         }
         c.response_bytes += t.cost.response_bytes;
         c.work += t.cost.work;
     }
-    c.peak_bytes += c.response_bytes;
+    c.peak_bytes += second + c.response_bytes;
     c
 }
