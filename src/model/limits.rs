@@ -40,7 +40,7 @@ impl Default for Limits {
     fn default() -> Self {
         Limits {
             max_dofs: 1000,
-            max_states: 1500,
+            max_states: 2000,
             max_speeds: 2000,
             max_samples: 2_000_000,
             max_steps: 500_000,

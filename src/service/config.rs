@@ -105,8 +105,8 @@ pub const SETTINGS: &[Setting] = &[
     },
     Setting {
         var: "WHIRL_MAX_STATES",
-        default: "1500",
-        meaning: "largest first-order eigenproblem, internal coordinates included",
+        default: "2000",
+        meaning: "largest first-order eigenproblem, internal coordinates included (2000: the nonviscous model of a 100-element rotor, 1616 states, and a rotor at WHIRL_MAX_DOFS)",
     },
     Setting {
         var: "WHIRL_MAX_SAMPLES",
@@ -246,7 +246,7 @@ impl Default for Config {
             max_body_bytes: 8 * 1024 * 1024,
             max_speeds: 2000,
             max_dofs: 1000,
-            max_states: 1500,
+            max_states: 2000,
             max_samples: 2_000_000,
             max_steps: 500_000,
             max_response_bytes: 128 << 20,
