@@ -415,7 +415,7 @@ impl StateModel {
             None => self.entry(segment, speed, i, j),
         };
         Blocks {
-            vv: CMat::from_fn(n, n, |i, j| e(i, j)),
+            vv: CMat::from_fn(n, n, &e),
             vx: CMat::from_fn(n, n, |i, j| e(i, n + j)),
             vy: CMat::from_fn(n, p, |i, j| e(i, 2 * n + j)),
             yx: CMat::from_fn(p, n, |i, j| e(2 * n + i, n + j)),
