@@ -33,7 +33,7 @@ fn case(name: &str, rotor: Value, nodes: &[usize]) {
 
 fn case_of(name: &str, rotor: Value, nodes: &[usize], models: &[Value]) {
     let system = assemble(rotor);
-    for d in models.iter().cloned() {
+    for d in models {
         let input: DampingInput = serde_json::from_value(d.clone()).unwrap();
         let model = DampingModel::parse(&input, Some(system.n())).unwrap();
         let full = DampedModel::build(&system, &model).unwrap();
