@@ -483,11 +483,11 @@ async fn problem_types_are_absolute_and_resolve_to_their_page() {
 async fn a_report_jobs_progress_never_decreases() {
     let (config, _dir) = config();
     let app = app(config);
-    let id = submit(
-        &app,
-        &json!({"analysis": "report", "input": example("rotor-a-nvd.report.json")}),
-    )
-    .await;
+    // Sweeps of 1500 speeds: a report of a few seconds, many heartbeats (runner::HEARTBEAT,
+    // 0.25 s, writes a job's progress); its default sweeps finish in about one second.
+    let mut input = example("rotor-a-nvd.report.json");
+    input["speeds"] = json!({"start": 0, "stop": 455, "count": 1500});
+    let id = submit(&app, &json!({"analysis": "report", "input": input})).await;
     let mut seen: Vec<f64> = vec![];
     let t0 = Instant::now();
     let last = loop {
