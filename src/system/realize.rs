@@ -114,22 +114,6 @@ impl Realized {
         Self::with(system, system.layout(), |s| s.at(speed))
     }
 
-    /// The mass matrix of [`Realized::at`] alone (all a solve through the state matrix needs).
-    pub fn mass_at(system: &RotorSystem, speed: f64) -> CMat {
-        let (n, layout) = (system.n(), system.layout());
-        let mut mass = blocks(&system.mass, layout);
-        for p in &system.supports {
-            add_support(
-                &mut mass,
-                &p.at.weights(),
-                n,
-                &p.support.at(speed).m,
-                layout,
-            );
-        }
-        mass
-    }
-
     /// The rotor with each support's coefficients as `coefficients` gives them.
     fn with(
         system: &RotorSystem,

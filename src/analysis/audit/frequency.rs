@@ -23,7 +23,6 @@
 
 use crate::analysis::AnalysisError;
 use crate::analysis::control::Control;
-use crate::damping::state::Blocks;
 use crate::damping::{DampedModel, ModelKind};
 use crate::linalg::{self, CMat, c64};
 pub use crate::model::loads::Excitation;
@@ -82,47 +81,36 @@ impl Excitation {
     }
 }
 
-/// The rotor at one spin speed, with what every excitation frequency shares: the free blocks
-/// of the state matrix `A(Omega)` and the mass matrix (linear models), or the realized rotor
-/// with its spun gyroscopic and circulatory matrices (hysteretic).
+/// The rotor realized at one spin speed, with what every excitation frequency shares: the
+/// state matrix `A(Omega)` (linear models) or the spun gyroscopic and circulatory matrices
+/// (hysteretic).
 pub(crate) struct Steady {
     n: usize,
     speed: f64,
-    layout: Layout,
+    r: Realized,
+    /// `A(Omega)`, or `S G` and `S C_r`.
     parts: Parts,
 }
 
 enum Parts {
-    /// Only the mass of the realized rotor: the rest is in `A` (a doubled rotor's realized
-    /// matrices are seven dense `2n x 2n` ones, most of a sweep's time when built per speed).
-    Linear { a: Blocks, mass: CMat },
-    Hysteretic {
-        r: Box<Realized>,
-        sg: CMat,
-        scr: CMat,
-    },
+    Linear(CMat),
+    Hysteretic { sg: CMat, scr: CMat },
 }
 
 impl Steady {
     pub(crate) fn at(system: &RotorSystem, model: &DampedModel, speed: f64) -> Self {
+        let r = Realized::at(system, speed);
         let parts = match &model.kind {
-            ModelKind::Linear(state) => Parts::Linear {
-                a: state.blocks(speed),
-                mass: Realized::mass_at(system, speed),
+            ModelKind::Linear(state) => Parts::Linear(state.at(speed)),
+            ModelKind::Hysteretic(_) => Parts::Hysteretic {
+                sg: r.spun(&r.gyroscopic),
+                scr: r.spun(&r.damping_rotating),
             },
-            ModelKind::Hysteretic(_) => {
-                let r = Realized::at(system, speed);
-                Parts::Hysteretic {
-                    sg: r.spun(&r.gyroscopic),
-                    scr: r.spun(&r.damping_rotating),
-                    r: Box::new(r),
-                }
-            }
         };
         Steady {
             n: system.n(),
             speed,
-            layout: system.layout(),
+            r,
             parts,
         }
     }
@@ -130,35 +118,24 @@ impl Steady {
     /// `Z` of `D(lambda) Z = rhs` on the model's coordinates (`rhs` of the model's physical
     /// size: `n`, or `2n` doubled).
     fn solve(&self, lambda: f64, rhs: &[c64]) -> Result<Vec<c64>, AnalysisError> {
-        let speed = self.speed;
-        let big = match &self.parts {
-            Parts::Linear { mass, .. } => mass.nrows(),
-            Parts::Hysteretic { r, .. } => r.size(),
-        };
+        let (r, speed) = (&self.r, self.speed);
+        let big = r.size();
         let zero = c64::new(0.0, 0.0);
         let i1 = c64::new(0.0, 1.0);
         match &self.parts {
-            Parts::Linear { a, mass } => {
-                // `(sigma I - A) [v; x; y] = [M^-1 f; 0; 0]`, `sigma = i lambda`: with `v = sigma x`
-                // and `y = (sigma - A_yy)^-1 A_yx x` one system of the rotor's size is left,
-                // `(sigma^2 - sigma A_vv - A_vx - A_vy (sigma - A_yy)^-1 A_yx) x = M^-1 f`:
-                // a factor of `n`, not of the state's `2n + p` (an eighth of the work at p = 0).
-                let sigma = i1 * lambda;
-                let mut t = CMat::from_fn(big, big, |i, j| {
-                    let diag = if i == j { sigma * sigma } else { zero };
-                    diag - sigma * a.vv[(i, j)] - a.vx[(i, j)]
+            Parts::Linear(a) => {
+                let size = a.nrows();
+                let lhs = CMat::from_fn(size, size, |i, j| {
+                    let diag = if i == j { i1 * lambda } else { zero };
+                    diag - a[(i, j)]
                 });
-                if !a.yy.is_empty() {
-                    let scaled =
-                        CMat::from_fn(a.yy.len(), big, |j, c| a.yx[(j, c)] / (sigma - a.yy[j]));
-                    t -= &a.vy * &scaled;
-                }
                 let fm = CMat::from_fn(big, 1, |i, _| rhs[i]);
-                let minv_f = linalg::mass_solve(mass, &fm)?;
-                let x = linalg::solve_complex(&t, &minv_f)?;
-                Ok((0..big).map(|i| x[(i, 0)]).collect())
+                let minv_f = linalg::mass_solve(&r.mass, &fm)?;
+                let b = CMat::from_fn(size, 1, |i, _| if i < big { minv_f[(i, 0)] } else { zero });
+                let z = linalg::solve_complex(&lhs, &b)?;
+                Ok((0..big).map(|i| z[(big + i, 0)]).collect())
             }
-            Parts::Hysteretic { r, sg, scr } => {
+            Parts::Hysteretic { sg, scr } => {
                 let sgn = |v: f64| {
                     if v > 0.0 {
                         1.0
@@ -212,7 +189,7 @@ impl Steady {
         let n = self.n;
         let zero = c64::new(0.0, 0.0);
         let any = |v: &[c64]| v.iter().any(|x| *x != zero);
-        let (a, b): (Vec<c64>, Vec<c64>) = match self.layout {
+        let (a, b): (Vec<c64>, Vec<c64>) = match self.r.layout {
             Layout::Doubled => {
                 let rhs: Vec<c64> = force
                     .forward
@@ -281,64 +258,4 @@ pub fn frequency_response(
             Ok(o[0])
         })
         .collect()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::model::api::{DampingInput, JeffcottInput, NonviscousInput};
-    use crate::model::damping::DampingModel;
-    use crate::model::rotor::Jeffcott;
-
-    /// The structured solve equals the whole first-order system's,
-    /// `(i lambda I - A) [v; x; y] = [M^-1 f; 0; 0]`, on a model with internal coordinates
-    /// (a nonviscous Jeffcott rotor: m = 2 kg, k = 8 N/m, loss factors 0.02 / 0.05).
-    #[test]
-    fn structured_solve_is_the_first_order_one() {
-        let input = JeffcottInput {
-            mass: 2.0,
-            stiffness: 8.0,
-            loss_factor_rotating: 0.02,
-            loss_factor_nonrotating: 0.05,
-            damping_rotating: 0.1,
-            damping_nonrotating: 0.3,
-        };
-        let system = RotorSystem::jeffcott(&Jeffcott::parse(&input, "rotor").unwrap());
-        let damping = DampingInput::Nonviscous(NonviscousInput::default());
-        let model = DampingModel::parse(&damping, Some(system.n())).unwrap();
-        let full = DampedModel::build(&system, &model).unwrap();
-        let ModelKind::Linear(state) = &full.kind else {
-            panic!("the nonviscous model is linear")
-        };
-        assert!(state.p() > 0);
-        let speed = 1.3;
-        let steady = Steady::at(&system, &full, speed);
-        let a = state.at(speed);
-        let (size, big) = (a.nrows(), system.n());
-        let f = [c64::new(0.7, -0.2)];
-        let minv_f = f[0] / 2.0;
-        for lambda in [0.4, 1.9, 2.2, -1.5] {
-            let z = steady.solve(lambda, &f).unwrap();
-            let lhs = CMat::from_fn(size, size, |i, j| {
-                let diag = if i == j {
-                    c64::new(0.0, lambda)
-                } else {
-                    c64::new(0.0, 0.0)
-                };
-                diag - a[(i, j)]
-            });
-            let b = CMat::from_fn(
-                size,
-                1,
-                |i, _| if i < big { minv_f } else { c64::new(0.0, 0.0) },
-            );
-            let whole = linalg::solve_complex(&lhs, &b).unwrap();
-            let x = whole[(big, 0)];
-            assert!(
-                (z[0] - x).norm() <= 1e-13 * x.norm(),
-                "{lambda}: {:?} vs {x:?}",
-                z[0]
-            );
-        }
-    }
 }
