@@ -403,9 +403,8 @@ impl StateModel {
         }
     }
 
-    /// The blocks of `A(speed)` its structure leaves free (`A_xv = I`, `A_xx = A_xy = 0`,
-    /// `A_yv = 0`, `A_yy` diagonal), without forming the whole state matrix.
-    pub fn blocks(&self, speed: f64) -> Blocks {
+    /// `(A(speed) - sigma I)^-1` by the structure of `A` (see [`ShiftInvert`]).
+    pub fn shift_invert(&self, speed: f64, sigma: c64) -> ShiftInvert {
         let (n, p) = (self.n, self.p());
         let segment = self.segment(speed);
         // With a schedule, the entries of the matrix it changes.
@@ -414,38 +413,26 @@ impl StateModel {
             Some(a) => a[(i, j)],
             None => self.entry(segment, speed, i, j),
         };
-        Blocks {
-            vv: CMat::from_fn(n, n, &e),
-            vx: CMat::from_fn(n, n, |i, j| e(i, n + j)),
-            vy: CMat::from_fn(n, p, |i, j| e(i, 2 * n + j)),
-            yx: CMat::from_fn(p, n, |i, j| e(2 * n + i, n + j)),
-            yy: (0..p).map(|j| e(2 * n + j, 2 * n + j)).collect(),
-        }
-    }
-
-    /// `(A(speed) - sigma I)^-1` by the structure of `A` (see [`ShiftInvert`]).
-    pub fn shift_invert(&self, speed: f64, sigma: c64) -> ShiftInvert {
-        let n = self.n;
-        let Blocks { vv, vx, vy, yx, yy } = self.blocks(speed);
         let avv = CMat::from_fn(n, n, |i, j| {
-            vv[(i, j)] - if i == j { sigma } else { c64::new(0.0, 0.0) }
+            e(i, j) - if i == j { sigma } else { c64::new(0.0, 0.0) }
         });
-        let dyy: Vec<c64> = yy
-            .iter()
-            .map(|&d| c64::new(1.0, 0.0) / (d - sigma))
+        let avy = CMat::from_fn(n, p, |i, j| e(i, 2 * n + j));
+        let ayx = CMat::from_fn(p, n, |i, j| e(2 * n + i, n + j));
+        let dyy: Vec<c64> = (0..p)
+            .map(|j| c64::new(1.0, 0.0) / (e(2 * n + j, 2 * n + j) - sigma))
             .collect();
         // S = sigma (A_vv - sigma) + A_vx - A_vy diag(dyy) A_yx.
-        let scaled = CMat::from_fn(yx.nrows(), n, |i, j| yx[(i, j)] * dyy[i]);
-        let coupled = &vy * &scaled;
+        let scaled = CMat::from_fn(p, n, |i, j| ayx[(i, j)] * dyy[i]);
+        let coupled = &avy * &scaled;
         let s = CMat::from_fn(n, n, |i, j| {
-            avv[(i, j)] * sigma + vx[(i, j)] - coupled[(i, j)]
+            avv[(i, j)] * sigma + e(i, n + j) - coupled[(i, j)]
         });
         ShiftInvert {
             n,
             sigma,
             avv,
-            avy: vy,
-            ayx: yx,
+            avy,
+            ayx,
             dyy,
             lu: linalg::ComplexLu::new(&s),
         }
@@ -455,17 +442,6 @@ impl StateModel {
     pub fn branches(&self) -> &Branches {
         &self.branches
     }
-}
-
-/// The free blocks of a state matrix `[[A_vv, A_vx, A_vy], [I, 0, 0], [0, A_yx, A_yy]]`
-/// (coordinates: velocities, displacements, internal).
-pub struct Blocks {
-    pub vv: CMat,
-    pub vx: CMat,
-    pub vy: CMat,
-    pub yx: CMat,
-    /// The diagonal of `A_yy`.
-    pub yy: Vec<c64>,
 }
 
 /// `(A - sigma I)^-1` for `A = [[A_vv, A_vx, A_vy], [I, 0, 0], [0, A_yx, A_yy]]` (`A_yy`

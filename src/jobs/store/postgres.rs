@@ -17,7 +17,7 @@ use super::{
 /// Connections per replica.
 const CONNECTIONS: u32 = 8;
 /// Serialises admission over all replicas (an arbitrary key: "whirl" in ASCII).
-pub(super) const ADMISSION_LOCK: i64 = 0x0077_6869_726c;
+const ADMISSION_LOCK: i64 = 0x0077_6869_726c;
 
 /// The columns of a [`JobRow`], times in ms since the epoch.
 const ROW: &str = "id, analysis, status, progress, \
@@ -62,6 +62,24 @@ fn row(r: &PgRow) -> Result<JobRow, sqlx::Error> {
     })
 }
 
+/// The jobs queued (single jobs, or study samples), counted under the admission lock that the
+/// transaction `tx` then holds: replicas admitting at once count each other's inserts.
+pub(super) async fn queued_admitting(
+    tx: &mut sqlx::Transaction<'_, sqlx::Postgres>,
+    samples: bool,
+) -> Result<i64, sqlx::Error> {
+    sqlx::query("SELECT pg_advisory_xact_lock($1)")
+        .bind(ADMISSION_LOCK)
+        .execute(&mut **tx)
+        .await?;
+    let kind = if samples { "IS NOT NULL" } else { "IS NULL" };
+    sqlx::query_scalar(&format!(
+        "SELECT count(*) FROM jobs WHERE status = 'queued' AND study_id {kind}"
+    ))
+    .fetch_one(&mut **tx)
+    .await
+}
+
 impl Postgres {
     pub async fn connect(
         url: &str,
@@ -90,16 +108,7 @@ impl Postgres {
 
     pub async fn submit(&self, job: &NewJob<'_>, queue: usize) -> Result<Inserted, sqlx::Error> {
         let mut tx = self.pool.begin().await?;
-        sqlx::query("SELECT pg_advisory_xact_lock($1)")
-            .bind(ADMISSION_LOCK)
-            .execute(&mut *tx)
-            .await?;
-        let waiting: i64 = sqlx::query_scalar(
-            "SELECT count(*) FROM jobs WHERE status = 'queued' AND study_id IS NULL",
-        )
-        .fetch_one(&mut *tx)
-        .await?;
-        if waiting >= queue as i64 {
+        if queued_admitting(&mut tx, false).await? >= queue as i64 {
             return Ok(Inserted::Full);
         }
         let r = sqlx::query(&format!(

@@ -2,7 +2,7 @@
 
 use sqlx::{QueryBuilder, Row};
 
-use super::postgres::{ADMISSION_LOCK, Postgres};
+use super::postgres::{Postgres, queued_admitting};
 use super::studies::{BATCH, NewSample, NewStudy, SampleRow, StudyRow};
 use super::{lane_text, ms, parse_problem, parse_status};
 
@@ -14,17 +14,7 @@ impl Postgres {
         queue: usize,
     ) -> Result<bool, sqlx::Error> {
         let mut tx = self.pool.begin().await?;
-        // Under the jobs' admission lock: replicas admitting studies together count each other.
-        sqlx::query("SELECT pg_advisory_xact_lock($1)")
-            .bind(ADMISSION_LOCK)
-            .execute(&mut *tx)
-            .await?;
-        let waiting: i64 = sqlx::query_scalar(
-            "SELECT count(*) FROM jobs WHERE status = 'queued' AND study_id IS NOT NULL",
-        )
-        .fetch_one(&mut *tx)
-        .await?;
-        if waiting + samples.len() as i64 > queue as i64 {
+        if queued_admitting(&mut tx, true).await? + samples.len() as i64 > queue as i64 {
             return Ok(false);
         }
         sqlx::query("INSERT INTO studies (id, analysis, request, samples) VALUES ($1, $2, $3, $4)")
