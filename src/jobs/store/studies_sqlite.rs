@@ -14,16 +14,7 @@ impl Sqlite {
         queue: usize,
     ) -> Result<bool, sqlx::Error> {
         let now = now_ms();
-        // The pool's one connection: nothing comes between the count and the inserts.
         let mut tx = self.pool.begin().await?;
-        let waiting: i64 = sqlx::query_scalar(
-            "SELECT count(*) FROM jobs WHERE status = 'queued' AND study_id IS NOT NULL",
-        )
-        .fetch_one(&mut *tx)
-        .await?;
-        if waiting + samples.len() as i64 > queue as i64 {
-            return Ok(false);
-        }
         sqlx::query(
             "INSERT INTO studies (id, analysis, request, samples, created_at) \
              VALUES (?1, ?2, ?3, ?4, ?5)",
@@ -35,6 +26,17 @@ impl Sqlite {
         .bind(now)
         .execute(&mut *tx)
         .await?;
+        // Counted after the first write: the transaction then holds the write lock, so nothing
+        // comes between the count and the inserts (a read first would have to upgrade its lock,
+        // which SQLite refuses at once when another connection wrote). Too many: rolled back.
+        let waiting: i64 = sqlx::query_scalar(
+            "SELECT count(*) FROM jobs WHERE status = 'queued' AND study_id IS NOT NULL",
+        )
+        .fetch_one(&mut *tx)
+        .await?;
+        if waiting + samples.len() as i64 > queue as i64 {
+            return Ok(false);
+        }
         for (b, batch) in samples.chunks(BATCH).enumerate() {
             let mut q = QueryBuilder::<sqlx::Sqlite>::new(
                 "INSERT INTO jobs (id, analysis, input, lane, memory_mib, status, created_at, \
