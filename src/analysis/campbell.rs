@@ -47,10 +47,13 @@ impl Branch {
             .collect()
     }
 
-    /// Its first defined speed (index) and |frequency| there.
-    fn start(&self) -> (usize, f64) {
+    /// Its first defined speed (index), |frequency| there (0 for a pole that does not
+    /// oscillate, [`poles::NON_OSCILLATING`]: its frequency is round-off) and |s| there.
+    fn start(&self) -> (usize, f64, f64) {
         let i = self.poles.iter().position(Option::is_some).unwrap_or(0);
-        (i, self.poles[i].map_or(0.0, |s| s.im.abs()))
+        let s = self.poles[i].unwrap_or_default();
+        let oscillates = s.im.abs() > poles::NON_OSCILLATING * s.norm();
+        (i, if oscillates { s.im.abs() } else { 0.0 }, s.norm())
     }
 }
 
@@ -272,11 +275,12 @@ fn keep_branches(mut all: Vec<(Branch, usize)>, keep: Keep) -> Vec<(Branch, usiz
     all
 }
 
-/// Branches by where they start: their first defined speed, then |frequency| there (the
-/// order modes are numbered in, and the lowest kept).
+/// Branches by where they start: their first defined speed, then |frequency| there, then |s|
+/// (the order modes are numbered in, and the lowest kept). Real poles at rest (ROSS's
+/// compressor) are ordered by |s|, not by their frequencies' round-off.
 fn by_start(a: &Branch, b: &Branch) -> std::cmp::Ordering {
-    let ((ia, fa), (ib, fb)) = (a.start(), b.start());
-    ia.cmp(&ib).then(fa.total_cmp(&fb))
+    let ((ia, fa, sa), (ib, fb, sb)) = (a.start(), b.start());
+    ia.cmp(&ib).then(fa.total_cmp(&fb)).then(sa.total_cmp(&sb))
 }
 
 /// The amplitude of each coordinate of a shape, whichever member of a mirror pair it is
@@ -293,7 +297,7 @@ fn profile(shape: &[c64], doubled: bool) -> Vec<c64> {
 }
 
 /// Largest pairing cost of two branches of the same mode: `1 - MAC` of their amplitude
-/// profiles plus their relative frequency difference where both are first defined.
+/// profiles plus their frequency difference where both are first defined, relative to |s|.
 const PAIR_GATE: f64 = 0.5;
 
 /// Mode numbers: the two branches of each mode are paired (forward and backward on isotropic
@@ -345,16 +349,18 @@ fn number_modes(branches: &mut [(Branch, usize)], doubled: bool) {
     });
 }
 
-/// Relative |frequency| difference of two branches at the first speed both are defined
-/// (1 if never together).
+/// |frequency| difference of two branches at the first speed both are defined, relative to
+/// the poles' modulus (1 if never together). Not to the frequencies themselves: real poles
+/// (overdamped, ROSS's compressor at rest) carry frequencies of round-off, 1e-9 rad/s of
+/// poles of 1e3 1/s, whose ratio is noise and paired its branches by chance.
 fn frequency_gap(a: &Branch, b: &Branch) -> f64 {
     a.poles
         .iter()
         .zip(&b.poles)
         .find_map(|(x, y)| match (x, y) {
             (Some(x), Some(y)) => {
-                let (x, y) = (x.im.abs(), y.im.abs());
-                Some((x - y).abs() / x.max(y).max(f64::MIN_POSITIVE))
+                let size = x.norm().max(y.norm()).max(f64::MIN_POSITIVE);
+                Some((x.im.abs() - y.im.abs()).abs() / size)
             }
             _ => None,
         })

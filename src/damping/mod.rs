@@ -15,6 +15,7 @@
 //! nonrotating rotor, at rest.
 
 pub mod equivalent;
+pub mod harmonic;
 pub mod hysteretic;
 pub mod nonviscous;
 pub mod report;

@@ -15,6 +15,7 @@
 //! `v = x'` the state `z = [v, x, y]` has `2n + p` entries, not `2(n + p)`, and
 //! `z' = A(Omega) z` with `A = A0 + Omega A1` (`D = D0 + Omega D1`, `K = K0 + Omega K1`).
 
+use super::harmonic::Physical;
 use super::schedule::Schedule;
 use crate::linalg::{self, CMat, LinalgError, RMat, c64};
 use crate::system::Realized;
@@ -151,6 +152,9 @@ pub struct StateModel {
     branches: Branches,
     stiffness: CMat,
     schedule: Option<Arc<Schedule>>,
+    /// The second-order matrices, kept for constant coefficients only (a table's or a
+    /// schedule's harmonic solves go through `A`).
+    physical: Option<Arc<Physical>>,
 }
 
 impl StateModel {
@@ -206,7 +210,24 @@ impl StateModel {
             branches: br.clone(),
             stiffness: so.stiffness.clone(),
             schedule: None,
+            physical: Some(Arc::new(Physical {
+                mass: so.mass.clone(),
+                d0: so.d0.clone(),
+                d1: so.d1.clone(),
+                k0: &so.k0 + &kadd,
+                k1: so.k1.clone(),
+                u: u.clone(),
+                uh: u.adjoint().to_owned(),
+                stiffness: br.stiffness.clone(),
+                rate: br.rate.clone(),
+                spin: br.spin.clone(),
+            })),
         })
+    }
+
+    /// The second-order form, where the coefficients are constant (see `harmonic.rs`).
+    pub fn physical(&self) -> Option<&Arc<Physical>> {
+        self.physical.as_ref()
     }
 
     /// The model with its tabulated supports scheduled (built at the schedule's reference
@@ -214,6 +235,7 @@ impl StateModel {
     pub fn scheduled(mut self, schedule: Arc<Schedule>) -> Self {
         debug_assert_eq!(self.points.len(), 1);
         self.schedule = Some(schedule);
+        self.physical = None;
         self
     }
 
@@ -232,6 +254,7 @@ impl StateModel {
             first.a1.push(m.a1.into_iter().next().expect("one"));
         }
         first.points = speeds.to_vec();
+        first.physical = None;
         first
     }
 
@@ -258,6 +281,7 @@ impl StateModel {
                 (self.stiffness[(i, j)] + other.stiffness[(i, j)]) * 0.5
             }),
             schedule: self.schedule.clone(),
+            physical: None,
         }
     }
 

@@ -87,11 +87,12 @@ impl Size {
             self.dofs as u64,
             self.states() as u64,
         );
-        // 8 real assembled matrices and Guyan's products; modal basis and second-order form;
+        // 8 real assembled matrices and Guyan's products; modal basis and second-order form
+        // (kept with its branch couplings U, U^H for harmonic solves, `damping::harmonic`);
         // A0, A1 per problem and the solve that builds them (n x (4n + p) complex, twice).
         let assembly = 12 * 8 * na * na;
         let basis = 16 * 8 * n * n;
-        let second_order = 96 * n * n;
+        let second_order = 96 * n * n + 2 * 16 * n * self.internal as u64;
         let state = self.problems as u64 * self.points.max(1) as u64 * 2 * 16 * s * s;
         let build = 2 * 16 * n * (4 * n + self.internal as u64) + 16 * n * n;
         assembly + basis + second_order + state + build

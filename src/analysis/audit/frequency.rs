@@ -23,6 +23,7 @@
 
 use crate::analysis::AnalysisError;
 use crate::analysis::control::Control;
+use crate::damping::harmonic::Spun;
 use crate::damping::{DampedModel, ModelKind};
 use crate::linalg::{self, CMat, c64};
 pub use crate::model::loads::Excitation;
@@ -81,36 +82,54 @@ impl Excitation {
     }
 }
 
-/// The rotor realized at one spin speed, with what every excitation frequency shares: the
-/// state matrix `A(Omega)` (linear models) or the spun gyroscopic and circulatory matrices
-/// (hysteretic).
+/// The rotor at one spin speed, with what every excitation frequency shares: the spun
+/// second-order matrices (linear models with constant coefficients, `damping::harmonic`), the
+/// state matrix `A(Omega)` (tabulated supports) or the realized rotor with its spun gyroscopic
+/// and circulatory matrices (hysteretic).
 pub(crate) struct Steady {
     n: usize,
     speed: f64,
-    r: Realized,
-    /// `A(Omega)`, or `S G` and `S C_r`.
+    layout: Layout,
     parts: Parts,
 }
 
 enum Parts {
-    Linear(CMat),
-    Hysteretic { sg: CMat, scr: CMat },
+    Physical(Spun),
+    /// `A(Omega)` and the realized mass.
+    Linear {
+        a: CMat,
+        mass: CMat,
+    },
+    Hysteretic {
+        r: Box<Realized>,
+        sg: CMat,
+        scr: CMat,
+    },
 }
 
 impl Steady {
     pub(crate) fn at(system: &RotorSystem, model: &DampedModel, speed: f64) -> Self {
-        let r = Realized::at(system, speed);
         let parts = match &model.kind {
-            ModelKind::Linear(state) => Parts::Linear(state.at(speed)),
-            ModelKind::Hysteretic(_) => Parts::Hysteretic {
-                sg: r.spun(&r.gyroscopic),
-                scr: r.spun(&r.damping_rotating),
+            ModelKind::Linear(state) => match state.physical() {
+                Some(p) => Parts::Physical(p.at(speed)),
+                None => Parts::Linear {
+                    a: state.at(speed),
+                    mass: Realized::at(system, speed).mass,
+                },
             },
+            ModelKind::Hysteretic(_) => {
+                let r = Realized::at(system, speed);
+                Parts::Hysteretic {
+                    sg: r.spun(&r.gyroscopic),
+                    scr: r.spun(&r.damping_rotating),
+                    r: Box::new(r),
+                }
+            }
         };
         Steady {
             n: system.n(),
             speed,
-            r,
+            layout: system.layout(),
             parts,
         }
     }
@@ -118,24 +137,33 @@ impl Steady {
     /// `Z` of `D(lambda) Z = rhs` on the model's coordinates (`rhs` of the model's physical
     /// size: `n`, or `2n` doubled).
     fn solve(&self, lambda: f64, rhs: &[c64]) -> Result<Vec<c64>, AnalysisError> {
-        let (r, speed) = (&self.r, self.speed);
-        let big = r.size();
+        let speed = self.speed;
+        let big = match self.layout {
+            Layout::Single => self.n,
+            Layout::Doubled => 2 * self.n,
+        };
         let zero = c64::new(0.0, 0.0);
         let i1 = c64::new(0.0, 1.0);
         match &self.parts {
-            Parts::Linear(a) => {
+            Parts::Physical(spun) => {
+                let lhs = spun.dynamic_stiffness(i1 * lambda);
+                let b = CMat::from_fn(big, 1, |i, _| rhs[i]);
+                let z = linalg::solve_complex(&lhs, &b)?;
+                Ok((0..big).map(|i| z[(i, 0)]).collect())
+            }
+            Parts::Linear { a, mass } => {
                 let size = a.nrows();
                 let lhs = CMat::from_fn(size, size, |i, j| {
                     let diag = if i == j { i1 * lambda } else { zero };
                     diag - a[(i, j)]
                 });
                 let fm = CMat::from_fn(big, 1, |i, _| rhs[i]);
-                let minv_f = linalg::mass_solve(&r.mass, &fm)?;
+                let minv_f = linalg::mass_solve(mass, &fm)?;
                 let b = CMat::from_fn(size, 1, |i, _| if i < big { minv_f[(i, 0)] } else { zero });
                 let z = linalg::solve_complex(&lhs, &b)?;
                 Ok((0..big).map(|i| z[(big + i, 0)]).collect())
             }
-            Parts::Hysteretic { sg, scr } => {
+            Parts::Hysteretic { r, sg, scr } => {
                 let sgn = |v: f64| {
                     if v > 0.0 {
                         1.0
@@ -189,7 +217,7 @@ impl Steady {
         let n = self.n;
         let zero = c64::new(0.0, 0.0);
         let any = |v: &[c64]| v.iter().any(|x| *x != zero);
-        let (a, b): (Vec<c64>, Vec<c64>) = match self.r.layout {
+        let (a, b): (Vec<c64>, Vec<c64>) = match self.layout {
             Layout::Doubled => {
                 let rhs: Vec<c64> = force
                     .forward
@@ -246,7 +274,7 @@ pub fn frequency_response(
     control: &Control,
 ) -> Result<Vec<Orbit>, AnalysisError> {
     let force = input.1.at(input.0, system.n());
-    // Realized and its state matrix once: only the excitation frequency changes.
+    // The spun matrices once: only the excitation frequency changes.
     let steady = Steady::at(system, model, speed);
     control.expect(frequencies.len() as u64);
     frequencies
@@ -258,4 +286,65 @@ pub fn frequency_response(
             Ok(o[0])
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::api::{DampingInput, JeffcottInput, NonviscousInput};
+    use crate::model::damping::DampingModel;
+    use crate::model::rotor::Jeffcott;
+
+    /// The second-order solve equals the whole first-order system's,
+    /// `(i lambda I - A) [v; x; y] = [M^-1 f; 0; 0]`, on a model with internal coordinates
+    /// (a nonviscous Jeffcott rotor: m = 2 kg, k = 8 N/m, loss factors 0.02 / 0.05).
+    #[test]
+    fn second_order_solve_is_the_first_order_one() {
+        let input = JeffcottInput {
+            mass: 2.0,
+            stiffness: 8.0,
+            loss_factor_rotating: 0.02,
+            loss_factor_nonrotating: 0.05,
+            damping_rotating: 0.1,
+            damping_nonrotating: 0.3,
+        };
+        let system = RotorSystem::jeffcott(&Jeffcott::parse(&input, "rotor").unwrap());
+        let damping = DampingInput::Nonviscous(NonviscousInput::default());
+        let model = DampingModel::parse(&damping, Some(system.n())).unwrap();
+        let full = DampedModel::build(&system, &model).unwrap();
+        let ModelKind::Linear(state) = &full.kind else {
+            panic!("the nonviscous model is linear")
+        };
+        assert!(state.p() > 0);
+        let speed = 1.3;
+        let steady = Steady::at(&system, &full, speed);
+        assert!(matches!(steady.parts, Parts::Physical(_)));
+        let a = state.at(speed);
+        let (size, big) = (a.nrows(), system.n());
+        let f = [c64::new(0.7, -0.2)];
+        let minv_f = f[0] / 2.0;
+        for lambda in [0.4, 1.9, 2.2, -1.5] {
+            let z = steady.solve(lambda, &f).unwrap();
+            let lhs = CMat::from_fn(size, size, |i, j| {
+                let diag = if i == j {
+                    c64::new(0.0, lambda)
+                } else {
+                    c64::new(0.0, 0.0)
+                };
+                diag - a[(i, j)]
+            });
+            let b = CMat::from_fn(
+                size,
+                1,
+                |i, _| if i < big { minv_f } else { c64::new(0.0, 0.0) },
+            );
+            let whole = linalg::solve_complex(&lhs, &b).unwrap();
+            let x = whole[(big, 0)];
+            assert!(
+                (z[0] - x).norm() <= 1e-13 * x.norm(),
+                "{lambda}: {:?} vs {x:?}",
+                z[0]
+            );
+        }
+    }
 }
