@@ -142,6 +142,25 @@ fn cross_coupled_anisotropic_rotor_under_every_damping_model() {
     }
 }
 
+/// benches/forced_ross.py's soft heavily damped cross-coupled rotor (held-out seed 9, 113
+/// elements, `heldout/soft_heavy_seed9.json`, written by `heldout_rotor(9, disks=True,
+/// stiff=False, heavy=True, anisotropic=True, bearings=2)`): its static corrections nearly lie
+/// in the span of the soft supports' modes, and a basis whose stiffness was the tracked `K v`
+/// drifted from the full model as it grew (1.7e-7 at 4 modes, 1e-3 at 40) and was never used;
+/// with `K V` formed (`ModalBasis::augmented_formed`) it reduces like the others.
+#[test]
+fn soft_heavily_damped_cross_coupled_rotor_under_every_damping_model() {
+    let path = format!(
+        "{}/tests/data/ross/heldout/soft_heavy_seed9.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let mut rotor: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    rotor["materials"]["steel"]["loss_factor"] = json!(0.002);
+    for d in models() {
+        unbalance_case("soft_heavy", rotor.clone(), d, 16, &[1, 16, 48]);
+    }
+}
+
 /// Outputs at every node: their static responses alone would keep any basis from halving
 /// the state; the sweep is reduced on the loads' and supports' corrections instead, and
 /// still equals the full model at every node and speed.
