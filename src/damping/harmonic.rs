@@ -16,10 +16,9 @@
 //! 3.5e-10, and costs a factor of the rotor's size, not of the state's `2n + p`.
 
 use crate::linalg::{self, CMat, c64};
-use std::sync::Arc;
 
-/// The second-order matrices a [`StateModel`](super::StateModel) was built from (`StateModel::new`
-/// fills them).
+/// The second-order matrices a [`StateModel`](super::StateModel) was built from, kept by
+/// [`StateModel::harmonic`](super::StateModel::harmonic) for constant coefficients.
 #[derive(Debug, Clone)]
 pub struct Physical {
     pub(super) mass: CMat,
@@ -28,6 +27,8 @@ pub struct Physical {
     /// `K0 + U diag(nu k) U^H`.
     pub(super) k0: CMat,
     pub(super) k1: CMat,
+    /// The branches' `U`, `U^H`, `k_j`, `d_j` and `rho_j` (`state::Branches`, copied: this
+    /// module does not import `state`, which holds a `Physical`).
     pub(super) u: CMat,
     pub(super) uh: CMat,
     pub(super) stiffness: Vec<f64>,
@@ -36,43 +37,24 @@ pub struct Physical {
 }
 
 impl Physical {
-    /// What every `sigma` at spin speed `speed` shares.
-    pub fn at(self: &Arc<Self>, speed: f64) -> Spun {
+    /// `Z(sigma)` at spin speed `speed` (see the module docs).
+    pub fn dynamic_stiffness(&self, speed: f64, sigma: c64) -> CMat {
         let n = self.mass.nrows();
-        Spun {
-            physical: self.clone(),
-            speed,
-            d: CMat::from_fn(n, n, |i, j| self.d0[(i, j)] + self.d1[(i, j)] * speed),
-            k: CMat::from_fn(n, n, |i, j| self.k0[(i, j)] + self.k1[(i, j)] * speed),
-        }
-    }
-}
-
-/// A [`Physical`] model at one spin speed: `D(Omega)` and `K(Omega)`.
-pub struct Spun {
-    physical: Arc<Physical>,
-    speed: f64,
-    d: CMat,
-    k: CMat,
-}
-
-impl Spun {
-    /// `Z(sigma)` (see the module docs).
-    pub fn dynamic_stiffness(&self, sigma: c64) -> CMat {
-        let p = &*self.physical;
-        let n = p.mass.nrows();
         let sigma2 = sigma * sigma;
         let mut z = CMat::from_fn(n, n, |i, j| {
-            p.mass[(i, j)] * sigma2 + self.d[(i, j)] * sigma + self.k[(i, j)]
+            self.mass[(i, j)] * sigma2
+                + (self.d0[(i, j)] + self.d1[(i, j)] * speed) * sigma
+                + self.k0[(i, j)]
+                + self.k1[(i, j)] * speed
         });
-        if !p.stiffness.is_empty() {
-            let w: Vec<c64> = (0..p.stiffness.len())
+        if !self.stiffness.is_empty() {
+            let w: Vec<c64> = (0..self.stiffness.len())
                 .map(|j| {
-                    let den = sigma + p.rate[j] - c64::new(0.0, self.speed * p.spin[j]);
-                    c64::new(-p.stiffness[j] * p.rate[j], 0.0) / den
+                    let den = sigma + self.rate[j] - c64::new(0.0, speed * self.spin[j]);
+                    c64::new(-self.stiffness[j] * self.rate[j], 0.0) / den
                 })
                 .collect();
-            z += linalg::scaled_product(&p.u, &w, &p.uh);
+            z += linalg::scaled_product(&self.u, &w, &self.uh);
         }
         z
     }

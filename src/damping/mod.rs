@@ -200,6 +200,11 @@ impl DampedModel {
                 None => m,
             };
             let bases = || bases.expect("the equivalent and nonviscous models have a basis");
+            // Constant coefficients keep the second-order matrices for harmonic solves.
+            let state = |so: &SecondOrder, br: &Branches| match scheduled || points.len() > 1 {
+                true => StateModel::new(so, br),
+                false => StateModel::harmonic(so, br),
+            };
             let linear = |models: Result<Vec<StateModel>, _>| -> Result<ModelKind, DampingError> {
                 Ok(ModelKind::Linear(Box::new(on_schedule(tabulate(models?)))))
             };
@@ -207,7 +212,7 @@ impl DampedModel {
                 DampingModel::Viscous => linear(
                     realized
                         .iter()
-                        .map(|r| StateModel::new(&SecondOrder::viscous(r), &Branches::none(size)))
+                        .map(|r| state(&SecondOrder::viscous(r), &Branches::none(size)))
                         .collect(),
                 ),
                 DampingModel::Hysteretic => {
@@ -236,7 +241,7 @@ impl DampedModel {
                         .map(|r| {
                             let so =
                                 equivalent::second_order(r, &system.hysteretic_rotating, bases());
-                            StateModel::new(&so, &Branches::none(size))
+                            state(&so, &Branches::none(size))
                         })
                         .collect(),
                 ),
@@ -248,7 +253,7 @@ impl DampedModel {
                         realized
                             .iter()
                             .zip(&branches)
-                            .map(|(r, br)| StateModel::new(&SecondOrder::viscous(r), br))
+                            .map(|(r, br)| state(&SecondOrder::viscous(r), br))
                             .collect(),
                     )
                 }

@@ -159,6 +159,11 @@ pub struct StateModel {
 
 impl StateModel {
     pub fn new(so: &SecondOrder, br: &Branches) -> Result<Self, LinalgError> {
+        Ok(Self::with_added(so, br)?.0)
+    }
+
+    /// The model and `U diag(nu k) U^H`, which [`StateModel::harmonic`] keeps too.
+    fn with_added(so: &SecondOrder, br: &Branches) -> Result<(Self, CMat), LinalgError> {
         let n = so.n();
         let p = br.len();
         let size = 2 * n + p;
@@ -202,7 +207,7 @@ impl StateModel {
             a0[(2 * n + j, 2 * n + j)] = real(-d);
             a1[(2 * n + j, 2 * n + j)] = c64::new(0.0, br.spin[j]);
         }
-        Ok(StateModel {
+        let model = StateModel {
             points: vec![0.0],
             a0: vec![a0],
             a1: vec![a1],
@@ -210,22 +215,32 @@ impl StateModel {
             branches: br.clone(),
             stiffness: so.stiffness.clone(),
             schedule: None,
-            physical: Some(Arc::new(Physical {
-                mass: so.mass.clone(),
-                d0: so.d0.clone(),
-                d1: so.d1.clone(),
-                k0: &so.k0 + &kadd,
-                k1: so.k1.clone(),
-                u: u.clone(),
-                uh: u.adjoint().to_owned(),
-                stiffness: br.stiffness.clone(),
-                rate: br.rate.clone(),
-                spin: br.spin.clone(),
-            })),
-        })
+            physical: None,
+        };
+        Ok((model, kadd))
     }
 
-    /// The second-order form, where the coefficients are constant (see `harmonic.rs`).
+    /// [`StateModel::new`] keeping its second-order matrices for harmonic solves
+    /// (`harmonic.rs`): only for constant coefficients, whose matrices do not change with the
+    /// speed but through `Omega` (a table's or a schedule's harmonic solves go through `A`).
+    pub fn harmonic(so: &SecondOrder, br: &Branches) -> Result<Self, LinalgError> {
+        let (mut m, kadd) = Self::with_added(so, br)?;
+        m.physical = Some(Arc::new(Physical {
+            mass: so.mass.clone(),
+            d0: so.d0.clone(),
+            d1: so.d1.clone(),
+            k0: &so.k0 + &kadd,
+            k1: so.k1.clone(),
+            u: br.coupling.clone(),
+            uh: br.coupling.adjoint().to_owned(),
+            stiffness: br.stiffness.clone(),
+            rate: br.rate.clone(),
+            spin: br.spin.clone(),
+        }));
+        Ok(m)
+    }
+
+    /// The second-order form, if kept ([`StateModel::harmonic`]).
     pub fn physical(&self) -> Option<&Arc<Physical>> {
         self.physical.as_ref()
     }

@@ -23,12 +23,13 @@
 
 use crate::analysis::AnalysisError;
 use crate::analysis::control::Control;
-use crate::damping::harmonic::Spun;
+use crate::damping::harmonic::Physical;
 use crate::damping::{DampedModel, ModelKind};
 use crate::linalg::{self, CMat, c64};
 pub use crate::model::loads::Excitation;
 use crate::system::{Layout, Realized, RotorSystem};
 use rayon::prelude::*;
+use std::sync::Arc;
 
 /// A node's steady orbit: `r(t) = a e^{i Omega t} + conj(b) e^{-i Omega t}`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -82,7 +83,7 @@ impl Excitation {
     }
 }
 
-/// The rotor at one spin speed, with what every excitation frequency shares: the spun
+/// The rotor at one spin speed, with what every excitation frequency shares: the
 /// second-order matrices (linear models with constant coefficients, `damping::harmonic`), the
 /// state matrix `A(Omega)` (tabulated supports) or the realized rotor with its spun gyroscopic
 /// and circulatory matrices (hysteretic).
@@ -94,7 +95,7 @@ pub(crate) struct Steady {
 }
 
 enum Parts {
-    Physical(Spun),
+    Physical(Arc<Physical>),
     /// `A(Omega)` and the realized mass.
     Linear {
         a: CMat,
@@ -111,7 +112,7 @@ impl Steady {
     pub(crate) fn at(system: &RotorSystem, model: &DampedModel, speed: f64) -> Self {
         let parts = match &model.kind {
             ModelKind::Linear(state) => match state.physical() {
-                Some(p) => Parts::Physical(p.at(speed)),
+                Some(p) => Parts::Physical(p.clone()),
                 None => Parts::Linear {
                     a: state.at(speed),
                     mass: Realized::at(system, speed).mass,
@@ -145,8 +146,8 @@ impl Steady {
         let zero = c64::new(0.0, 0.0);
         let i1 = c64::new(0.0, 1.0);
         match &self.parts {
-            Parts::Physical(spun) => {
-                let lhs = spun.dynamic_stiffness(i1 * lambda);
+            Parts::Physical(physical) => {
+                let lhs = physical.dynamic_stiffness(speed, i1 * lambda);
                 let b = CMat::from_fn(big, 1, |i, _| rhs[i]);
                 let z = linalg::solve_complex(&lhs, &b)?;
                 Ok((0..big).map(|i| z[(i, 0)]).collect())
