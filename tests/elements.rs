@@ -7,7 +7,7 @@ mod common;
 
 use common::ross::*;
 use serde_json::{Value, json};
-use whirl::analysis::poles::poles_at;
+use whirl::analysis::poles::{Whirl, poles_at};
 use whirl::damping::DampedModel;
 use whirl::model::Limits;
 use whirl::model::api::RotorInput;
@@ -29,6 +29,132 @@ fn axial_force_torque_and_proportional_damping_give_rosss_poles_and_response() {
 fn sleeves_on_the_shafts_nodes_give_rosss_poles_and_response() {
     poles_match("sleeved.json", 1e-6);
     unbalance_match("sleeved.json", 1e-6);
+}
+
+/// A train of three shafts joined by two flexible couplings (masses, inertias, lateral and
+/// angular springs), on six anisotropic cross-coupled bearings: ROSS's `CouplingElement` in the
+/// same shaft line gives the same poles at five speeds and the same unbalance response at eight
+/// nodes, on all three shafts (tests/data/ross/elements.py, `train`).
+#[test]
+fn a_train_of_three_shafts_joined_by_couplings_gives_rosss_poles_and_response() {
+    let d = common::ross::data("train.json");
+    assert_eq!(system(&d["rotor"]).n(), 42, "21 nodes");
+    poles_match("train.json", 1e-6);
+    unbalance_match("train.json", 1e-6);
+}
+
+/// The couplings' dampers turn with the shafts (rotating damping): at rest they are ROSS's
+/// nonrotating ones, and every pole agrees there; spun at 1500 rad/s, above the lowest modes,
+/// a rotating damper works on the whirl relative to the shaft, `omega - Omega`: it damps a
+/// forward mode below the speed less than a standing damper does, and a backward mode more
+/// (the circulatory stiffness `-i Omega c`). Each of the lowest poles moves that way from
+/// ROSS's, by more than a thousandth of its decay rate.
+#[test]
+fn coupling_dampers_are_rotating_damping() {
+    let d = common::ross::data("train_damped.json");
+    let s = system(&d["rotor"]);
+    let model = DampedModel::build(&s, &damping(json!({"model": "viscous"}), s.n())).unwrap();
+    let cases = d["poles"].as_array().unwrap();
+    let at_rest = eigenvalues(&cases[0]["eigenvalues"]);
+    let rest = spectrum(&poles_at(&model, 0.0).unwrap(), true);
+    let e = distance(&at_rest, &rest);
+    assert!(e <= 1e-6, "at rest: {e:.2e}");
+    let speed = cases[1]["speed"].as_f64().unwrap();
+    let ross = eigenvalues(&cases[1]["eigenvalues"]);
+    let (mut forward, mut backward) = (0, 0);
+    for p in poles_at(&model, speed).unwrap().rotor.iter() {
+        if !(p.s.im.abs() > 1.0 && p.s.im.abs() < 0.5 * speed) {
+            continue;
+        }
+        let theirs = ross
+            .iter()
+            .min_by(|a, b| (*a - p.s).norm().total_cmp(&(*b - p.s).norm()))
+            .copied()
+            .unwrap();
+        let shift = (p.s.re - theirs.re) / theirs.re.abs();
+        println!(
+            "{:?} {:.2}: Whirl {:.4}, ROSS {:.4} ({shift:+.2e})",
+            p.whirl, p.s.im, p.s.re, theirs.re
+        );
+        match p.whirl {
+            Whirl::Forward => {
+                assert!(shift > 1e-3, "{} less damped", p.s);
+                forward += 1;
+            }
+            Whirl::Backward => {
+                assert!(shift < -1e-3, "{} more damped", p.s);
+                backward += 1;
+            }
+            Whirl::Internal => {}
+        }
+    }
+    assert!(
+        forward >= 2 && backward >= 2,
+        "{forward} forward, {backward} backward"
+    );
+}
+
+/// The train's weight under gravity is its shafts' steel, its four disks and its couplings'
+/// halves (these hang on the couplings' nodes): by hand, 7810 kg/m^3 pi/4 (0.06^2 0.8 +
+/// 0.05^2 0.6 + 0.07^2 1.0) m^3 = 56.92 kg of shaft, 120 kg of disks, 11 + 8 kg of couplings;
+/// and the six bearings' loads add up to it.
+#[test]
+fn a_trains_weight_and_bearing_loads_count_its_couplings() {
+    use whirl::analysis::audit::statics::{Held, static_deflection};
+    let d = common::ross::data("train.json");
+    let input: RotorInput = serde_json::from_value(d["rotor"].clone()).unwrap();
+    let Rotor::Beam(b) = Rotor::parse(&input, &Limits::default()).unwrap() else {
+        panic!("a beam rotor")
+    };
+    let g = 9.80665;
+    let shaft = 7810.0 * std::f64::consts::PI / 4.0
+        * (0.06f64.powi(2) * 0.8 + 0.05f64.powi(2) * 0.6 + 0.07f64.powi(2) * 1.0);
+    let mass = shaft + 120.0 + 19.0;
+    let s = static_deflection(&b, g, Held::Elastic { speed: 0.0 }).unwrap();
+    assert!(
+        (s.weight / (g * mass) - 1.0).abs() < 1e-12,
+        "{} N vs {} N",
+        s.weight,
+        g * mass
+    );
+    let loads: f64 = s.reactions.iter().map(|r| r.y).sum();
+    println!(
+        "weight {:.3} N ({mass:.3} kg), bearing loads {loads:.3} N",
+        s.weight
+    );
+    assert!((loads / s.weight - 1.0).abs() < 1e-9, "{loads} N");
+}
+
+/// A coupling segment takes no shaft field, its coefficients must be finite and non-negative,
+/// and no sleeve may span it: 400s naming each field.
+#[test]
+fn bad_couplings_are_refused_naming_the_field() {
+    let d = common::ross::data("train.json");
+    let parse = |rotor: Value| -> Vec<String> {
+        let input: RotorInput = serde_json::from_value(rotor).unwrap();
+        match Rotor::parse(&input, &Limits::default()) {
+            Ok(_) => vec![],
+            Err(e) => e.errors().iter().map(|f| f.path.clone()).collect(),
+        }
+    };
+    let mut r = d["rotor"].clone();
+    r["shaft"][1]["material"] = json!("steel");
+    r["shaft"][1]["coupling"]["translational_stiffness"] = json!(-1.0);
+    r["shaft"][3]["coupling"]["mass"] = json!([1.0, -2.0]);
+    r["shaft"][3]["coupling"]["loss_factor"] = json!(1.5);
+    let fields = parse(r);
+    for f in [
+        "rotor.shaft[1].material",
+        "rotor.shaft[1].coupling.translational_stiffness",
+        "rotor.shaft[3].coupling.mass[1]",
+        "rotor.shaft[3].coupling.loss_factor",
+    ] {
+        assert!(fields.iter().any(|g| g == f), "{f} not in {fields:?}");
+    }
+    let mut r = d["rotor"].clone();
+    r["sleeves"] = json!([{"node": 5, "elements": 3, "outer_diameter": 0.09,
+                           "inner_diameter": 0.06, "material": "steel"}]);
+    assert_eq!(parse(r), vec!["rotor.sleeves[0].node".to_string()]);
 }
 
 /// Natural frequencies (rad/s) at rest, undamped, lowest first.

@@ -206,6 +206,38 @@ async fn example1_nvd_poles() {
 }
 
 #[tokio::test]
+async fn train_criticals_and_stability() {
+    // "forward critical speeds 426.7, 468.9, 712.1 and 1348.7 rad/s, stable to 1500 rad/s"
+    let v = run("train-hysteretic.campbell.json").await;
+    let crit = numbers(&v["critical_speeds"]);
+    assert_eq!(crit.len(), 4, "{crit:?}");
+    for (c, printed) in crit.iter().zip(["426.7", "468.9", "712.1", "1348.7"]) {
+        assert_printed(*c, printed, "train critical speed");
+    }
+    assert_eq!(v["threshold"], Value::Null);
+    // "each forward mode loses damping where it crosses the 1x line": the decay rate of
+    // modes 1F to 3F jumps up between the speeds either side of their critical speed.
+    let speeds = numbers(&v["speeds"]);
+    for (mode, c) in (1..=3).zip(&crit) {
+        let b = v["branches"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|b| b["mode"] == mode && b["whirl"] == "forward")
+            .unwrap();
+        let sigma = numbers(&b["decay_rate"]);
+        let k = speeds.iter().position(|w| w > c).unwrap();
+        let (below, above) = (sigma[k - 1], sigma[k]);
+        let step = sigma[k - 2] - sigma[k - 1];
+        println!("{mode}F at {c:.1} rad/s: decay rate {below:.3} -> {above:.3} 1/s");
+        assert!(
+            above - below > 10.0 * step.abs(),
+            "{mode}F: {below} -> {above}"
+        );
+    }
+}
+
+#[tokio::test]
 async fn compressor_branches_criticals_and_threshold() {
     // "The compressor: branches below 6000 rad/s, critical speeds 450 and 1347 rad/s; stable
     // with nonviscous damping, unstable from 2931 rad/s with equivalent damping."

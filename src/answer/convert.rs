@@ -77,7 +77,7 @@ pub fn shaft_layout(rotor: &crate::model::rotor::Rotor) -> Option<api::ShaftLayo
     };
     let mut positions = vec![0.0];
     for e in b.elements() {
-        positions.push(positions[positions.len() - 1] + e.length);
+        positions.push(positions[positions.len() - 1] + e.length());
     }
     let supports = b
         .supports()

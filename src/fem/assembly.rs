@@ -5,14 +5,15 @@
 //! The shaft's stiffness and its material loss (`K''_r = eta K_e` per element) are rotating;
 //! supports act on translations and are nonrotating (stiffness, viscous damping,
 //! `K''_n = eta k`). Disks add mass on `r`, transverse inertia on `phi` and polar inertia to
-//! the gyroscopic matrix.
+//! the gyroscopic matrix. A coupling (`model::coupling`) joins two nodes of the shaft line
+//! like an element, with rotating springs and dampers and its halves' masses lumped.
 
 use super::conical::{self, Cone};
 use super::element::{self, Mat4, Section};
 use super::guyan;
 use crate::linalg::{LinalgError, RMat};
 use crate::model::api::GuyanKeep;
-use crate::model::rotor::{BeamRotor, MatrixRotor, Rotor, ShaftElement};
+use crate::model::rotor::{BeamRotor, Coupling, Element, MatrixRotor, Rotor, ShaftElement};
 use crate::system::{Dof, DofKind, PlacedSupport, Placement, RotorSystem};
 
 /// The section of a uniform element (of a conical one, its mean diameters), with Cowper's
@@ -107,6 +108,27 @@ fn add_element(s: &mut RotorSystem, at: usize, e: &ShaftElement) {
     }
 }
 
+/// A coupling from the degrees of freedom `at` (`r`, `phi` of its left node) to `at + 3`: a
+/// spring and a rotating damper between the translations and between the rotations, each
+/// half's mass and inertias on its node.
+fn add_coupling(s: &mut RotorSystem, at: usize, c: &Coupling) {
+    let (kt, kr) = (c.translational_stiffness, c.angular_stiffness);
+    let (ct, cr) = (c.translational_damping, c.angular_damping);
+    let between = |m: &mut RMat, d: usize, a: f64| spring(m, at + d, Some(at + 2 + d), a);
+    between(&mut s.stiffness_rotating, 0, kt);
+    between(&mut s.stiffness_rotating, 1, kr);
+    between(&mut s.hysteretic_rotating, 0, c.loss_factor * kt);
+    between(&mut s.hysteretic_rotating, 1, c.loss_factor * kr);
+    between(&mut s.damping_rotating, 0, ct);
+    between(&mut s.damping_rotating, 1, cr);
+    for side in 0..2 {
+        let (r, phi) = (at + 2 * side, at + 2 * side + 1);
+        s.mass[(r, r)] += c.mass[side];
+        s.mass[(phi, phi)] += c.transverse_inertia[side];
+        s.gyroscopic[(phi, phi)] += c.polar_inertia[side];
+    }
+}
+
 /// The shaft and disks of a beam rotor alone: no point masses, no nodes off the shaft, no
 /// supports, no reduction (2 complex degrees of freedom per node). What the audit analyses
 /// replace the supports on (as ROSS's `run_ucs` and `run_static` do, which drop point masses).
@@ -157,9 +179,14 @@ fn structure(rotor: &BeamRotor, n: usize) -> RotorSystem {
             .collect(),
         supports: vec![],
     };
-    let sleeves = rotor.sleeves().iter().map(|sl| (sl.over, &sl.element));
-    for (e, el) in rotor.elements().iter().enumerate().chain(sleeves) {
-        add_element(&mut s, 2 * e, el);
+    for (e, el) in rotor.elements().iter().enumerate() {
+        match el {
+            Element::Beam(b) => add_element(&mut s, 2 * e, b),
+            Element::Coupling(c) => add_coupling(&mut s, 2 * e, c),
+        }
+    }
+    for sl in rotor.sleeves() {
+        add_element(&mut s, 2 * sl.over, &sl.element);
     }
     for d in rotor.disks() {
         let (r, phi) = (2 * d.node, 2 * d.node + 1);

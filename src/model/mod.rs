@@ -5,6 +5,7 @@
 //! the first, so that a client fixes its request in one round trip.
 
 pub mod api;
+pub mod coupling;
 pub mod damping;
 pub mod error;
 pub mod jeffcott;

@@ -1,11 +1,12 @@
 //! Validated rotors. A value of these types exists only if it is physically valid.
 
 use super::api::{BeamInput, GuyanKeep, MatricesInput, RotorInput};
+pub use super::coupling::Coupling;
 use super::error::{Invalid, finite, loss_factor, non_negative, positive};
 pub use super::point_masses::PointMass;
 use super::point_masses::{nodes_off_shaft, parse_point_masses};
+pub use super::shaft::{Element, Rayleigh, ShaftElement, Sleeve};
 use super::shaft::{Material, SectionInput, parse_section, parse_sleeves};
-pub use super::shaft::{Rayleigh, ShaftElement, Sleeve};
 use super::supports::GeneralSupport;
 pub use super::supports::{Support, parse_supports, support_path};
 use crate::linalg::{self, RMat};
@@ -80,10 +81,8 @@ impl Rotor {
                 j.loss_factor_nonrotating() > 0.0,
             ),
             Rotor::Beam(b) => (
-                b.elements
-                    .iter()
-                    .chain(b.sleeves.iter().map(|s| &s.element))
-                    .any(|e| e.loss_factor > 0.0),
+                b.elements.iter().any(|e| e.loss_factor() > 0.0)
+                    || b.sleeves.iter().any(|s| s.element.loss_factor > 0.0),
                 b.supports
                     .iter()
                     .any(|s| s.loss_factor > 0.0 && s.stiffness > 0.0),
@@ -128,7 +127,7 @@ pub struct Disk {
 /// `shaft_nodes()` on are off the shaft (translations only, see `point_masses`).
 #[derive(Debug, Clone, PartialEq)]
 pub struct BeamRotor {
-    elements: Vec<ShaftElement>,
+    elements: Vec<Element>,
     /// Elements laid over the shaft's.
     sleeves: Vec<Sleeve>,
     disks: Vec<Disk>,
@@ -141,7 +140,7 @@ pub struct BeamRotor {
 }
 
 impl BeamRotor {
-    pub fn elements(&self) -> &[ShaftElement] {
+    pub fn elements(&self) -> &[Element] {
         &self.elements
     }
     /// Elements laid over the shaft's, their matrices added to those of the element under.
@@ -150,7 +149,7 @@ impl BeamRotor {
     }
     /// Each shaft element's mass with the sleeves laid over it, kg.
     pub fn element_masses(&self) -> Vec<f64> {
-        let mut m: Vec<f64> = self.elements.iter().map(ShaftElement::mass).collect();
+        let mut m: Vec<f64> = self.elements.iter().map(Element::mass).collect();
         for s in &self.sleeves {
             m[s.over] += s.element.mass();
         }
@@ -158,7 +157,7 @@ impl BeamRotor {
     }
     /// Mass of the shaft, sleeves included, kg.
     pub fn shaft_mass(&self) -> f64 {
-        self.elements.iter().map(ShaftElement::mass).sum::<f64>()
+        self.elements.iter().map(Element::mass).sum::<f64>()
             + self.sleeves.iter().map(|s| s.element.mass()).sum::<f64>()
     }
     pub fn disks(&self) -> &[Disk] {
@@ -270,6 +269,14 @@ impl BeamRotor {
         let mut elements = vec![];
         for (i, seg) in b.shaft.iter().enumerate() {
             let at = format!("rotor.shaft[{i}]");
+            if let Some(c) = &seg.coupling {
+                if let Some(c) = Coupling::parse(seg, c, &at, &mut bad)
+                    && !too_many
+                {
+                    elements.push(Element::Coupling(c));
+                }
+                continue;
+            }
             let length = bad.check(&format!("{at}.length"), positive(seg.length));
             let section = parse_section(
                 &SectionInput {
@@ -293,7 +300,7 @@ impl BeamRotor {
             {
                 for k in 0..n {
                     let (t0, t1) = (k as f64 / n as f64, (k + 1) as f64 / n as f64);
-                    elements.push(sec.element(l / n as f64, t0, t1));
+                    elements.push(Element::Beam(sec.element(l / n as f64, t0, t1)));
                 }
             }
         }

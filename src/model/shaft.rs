@@ -9,6 +9,7 @@
 use std::collections::BTreeMap;
 
 use super::api::{DampingFrame, RayleighInput, SleeveInput};
+use super::coupling::Coupling;
 use super::error::{Invalid, finite, non_negative, positive};
 
 /// Proportional damping `alpha M_e + beta K_e` of an element.
@@ -57,6 +58,48 @@ impl ShaftElement {
         let (il, ir) = (self.inner_diameter, self.inner_diameter_right);
         self.density * std::f64::consts::PI * self.length / 12.0
             * ((ol * ol + ol * or + or * or) - (il * il + il * ir + ir * ir))
+    }
+}
+
+/// An element of the shaft line, joining nodes `e` and `e + 1`: a beam, or a coupling between
+/// two shafts of a train.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Element {
+    Beam(ShaftElement),
+    Coupling(Coupling),
+}
+
+impl Element {
+    /// Axial length, m.
+    pub fn length(&self) -> f64 {
+        match self {
+            Element::Beam(b) => b.length,
+            Element::Coupling(c) => c.length,
+        }
+    }
+
+    /// Mass, kg (a coupling's two halves).
+    pub fn mass(&self) -> f64 {
+        match self {
+            Element::Beam(b) => b.mass(),
+            Element::Coupling(c) => c.total_mass(),
+        }
+    }
+
+    /// The beam, unless it is a coupling.
+    pub fn beam(&self) -> Option<&ShaftElement> {
+        match self {
+            Element::Beam(b) => Some(b),
+            Element::Coupling(_) => None,
+        }
+    }
+
+    /// Its rotating hysteretic loss factor.
+    pub fn loss_factor(&self) -> f64 {
+        match self {
+            Element::Beam(b) => b.loss_factor,
+            Element::Coupling(c) => c.loss_factor,
+        }
     }
 }
 
@@ -210,7 +253,7 @@ pub fn parse_section(
 /// Validates the sleeves over `shaft` (the shaft's elements, already cut).
 pub fn parse_sleeves(
     inputs: &[SleeveInput],
-    shaft: &[ShaftElement],
+    shaft: &[Element],
     max_elements: u64,
     materials: &BTreeMap<String, Material>,
     defined: &[&str],
@@ -277,10 +320,20 @@ pub fn parse_sleeves(
             continue;
         }
         let range = first as usize..(first + span) as usize;
-        let total: f64 = shaft[range.clone()].iter().map(|e| e.length).sum();
+        if let Some(c) = range.clone().find(|&e| shaft[e].beam().is_none()) {
+            bad.push(
+                format!("{at}.node"),
+                format!(
+                    "spans the coupling between nodes {c} and {}: a sleeve lies on a shaft",
+                    c + 1
+                ),
+            );
+            continue;
+        }
+        let total: f64 = shaft[range.clone()].iter().map(Element::length).sum();
         let mut z = 0.0;
         for e in range {
-            let l = shaft[e].length;
+            let l = shaft[e].length();
             sleeves.push(Sleeve {
                 over: e,
                 element: section.element(l, z / total, (z + l) / total),

@@ -42,7 +42,7 @@ use super::deflection::{self, Span};
 use crate::analysis::AnalysisError;
 use crate::fem::assembly;
 use crate::linalg::{self, LinalgError, RMat};
-use crate::model::rotor::BeamRotor;
+use crate::model::rotor::{BeamRotor, Element};
 use crate::model::supports::Matrix2;
 
 /// How the shaft is held.
@@ -176,14 +176,31 @@ pub fn static_deflection(
     for d in rotor.disks() {
         force[d.node] -= gravity * d.mass;
     }
+    // A coupling's halves weigh on its nodes; it carries no distributed weight.
+    let mut element_weight: Vec<f64> = rotor.element_masses().iter().map(|m| gravity * m).collect();
+    for (e, el) in rotor.elements().iter().enumerate() {
+        if let Element::Coupling(c) = el {
+            force[e] -= gravity * c.mass[0];
+            force[e + 1] -= gravity * c.mass[1];
+            element_weight[e] = 0.0;
+        }
+    }
     // Inside a conical element, or one with a sleeve, the curve is that of the mid section
-    // under the element's whole weight: exact at the nodes, not between them.
-    let sections: Vec<_> = rotor.elements().iter().map(assembly::section).collect();
-    let element_weight: Vec<f64> = rotor.element_masses().iter().map(|m| gravity * m).collect();
+    // under the element's whole weight: exact at the nodes, not between them. Across a
+    // coupling (no section) the displacement is drawn straight between its nodes.
+    let sections: Vec<_> = rotor
+        .elements()
+        .iter()
+        .map(|e| e.beam().map(assembly::section))
+        .collect();
     // Each element's deflection curve in each plane: its weight loads the y plane only.
     let curve = |e: usize, t: f64| {
         let ends = |u: &[f64]| [u[2 * e], u[2 * e + 1], u[2 * e + 2], u[2 * e + 3]];
-        let s = &sections[e];
+        let Some(s) = &sections[e] else {
+            let f = (t - z[e]) / (z[e + 1] - z[e]);
+            let line = |u: &[f64]| u[2 * e] + f * (u[2 * e + 2] - u[2 * e]);
+            return (line(&uy), line(&ux));
+        };
         let (y, x) = (
             Span::new(s, -element_weight[e] / s.length.max(f64::MIN_POSITIVE)),
             Span::new(s, 0.0),
@@ -191,8 +208,14 @@ pub fn static_deflection(
         let d = t - z[e];
         (y.deflection(ends(&uy), d), x.deflection(ends(&ux), d))
     };
+    let couplings: f64 = rotor
+        .elements()
+        .iter()
+        .filter(|e| e.beam().is_none())
+        .map(Element::mass)
+        .sum();
     let weight = element_weight.iter().sum::<f64>()
-        + gravity * rotor.disks().iter().map(|d| d.mass).sum::<f64>();
+        + gravity * (rotor.disks().iter().map(|d| d.mass).sum::<f64>() + couplings);
     // Left of a section: the upward resultant `up` and its first moment `up_z` about z = 0,
     // so that the moment of the left part about the section at z is `up z - up_z`. Inside
     // element e (from z_e, weight q = w_e / l_e per length) the part of the element left of
@@ -288,7 +311,7 @@ pub fn static_deflection(
 fn positions(rotor: &BeamRotor) -> Vec<f64> {
     let mut z = vec![0.0];
     for e in rotor.elements() {
-        z.push(z.last().unwrap() + e.length);
+        z.push(z.last().unwrap() + e.length());
     }
     z
 }

@@ -155,7 +155,8 @@ pub struct SegmentInput {
     #[serde(default)]
     #[schema(minimum = 0.0)]
     pub inner_diameter: f64,
-    /// Name of a material in `materials`.
+    /// Name of a material in `materials` (required but for a coupling).
+    #[serde(default)]
     pub material: String,
     /// Number of equal elements the segment is split into (default 1).
     #[serde(default)]
@@ -183,6 +184,57 @@ pub struct SegmentInput {
     /// Proportional (Rayleigh) viscous damping of the segment's elements.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rayleigh_damping: Option<RayleighInput>,
+    /// A flexible coupling instead of a shaft: one element joining the shafts on either side
+    /// (a train's shafts are the runs of segments between couplings). Its `length` places the
+    /// nodes and its `outer_diameter` draws it; it takes no material or other shaft field.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub coupling: Option<CouplingInput>,
+}
+
+/// A flexible coupling between two shaft ends (ROSS's `CouplingElement`, lateral part): springs
+/// and dampers between the translations and between the rotations of its two nodes, and the
+/// masses and inertias of its two halves lumped on them. It turns with the shafts, so its
+/// damping is rotating damping (viscous, and hysteretic by `loss_factor`). Isotropic: a
+/// coupling that is stiffer in one direction than the other turns that direction with it,
+/// which no linear time-invariant model holds.
+#[derive(Debug, Clone, Default, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct CouplingInput {
+    /// Lateral (translational) stiffness between the two nodes, N/m (>= 0; ROSS's `kt_x = kt_y`).
+    #[serde(default)]
+    #[schema(minimum = 0.0)]
+    pub translational_stiffness: f64,
+    /// Angular (bending) stiffness between the two nodes' rotations, N m/rad (>= 0; ROSS's
+    /// `kr_x = kr_y`).
+    #[serde(default)]
+    #[schema(minimum = 0.0)]
+    pub angular_stiffness: f64,
+    /// Lateral viscous damping, N s/m (>= 0), rotating with the coupling.
+    #[serde(default)]
+    #[schema(minimum = 0.0)]
+    pub translational_damping: f64,
+    /// Angular viscous damping, N m s/rad (>= 0), rotating with the coupling.
+    #[serde(default)]
+    #[schema(minimum = 0.0)]
+    pub angular_damping: f64,
+    /// Loss factor of the coupling's stiffness (elastomeric couplings): rotating hysteretic
+    /// damping, in [0, 1).
+    #[serde(default)]
+    #[schema(minimum = 0.0, exclusive_maximum = 1.0)]
+    pub loss_factor: f64,
+    /// Mass of each half, kg (>= 0), lumped on its node: `[left, right]`.
+    #[serde(default)]
+    #[schema(min_items = 2, max_items = 2)]
+    pub mass: [f64; 2],
+    /// Polar moment of inertia of each half, kg m^2 (>= 0): `[left, right]`.
+    #[serde(default)]
+    #[schema(min_items = 2, max_items = 2)]
+    pub polar_inertia: [f64; 2],
+    /// Transverse (diametral) moment of inertia of each half, kg m^2 (>= 0; default half the
+    /// polar one, as ROSS takes it): `[left, right]`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schema(min_items = 2, max_items = 2)]
+    pub transverse_inertia: Option<[f64; 2]>,
 }
 
 /// A rigid disk at a node.

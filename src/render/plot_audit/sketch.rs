@@ -21,6 +21,9 @@ const DISK_PX: f64 = 150.0;
 const GREY: RGBColor = RGBColor(110, 110, 110);
 const STEEL: RGBColor = RGBColor(178, 190, 204);
 const STEEL_EDGE: RGBColor = RGBColor(90, 100, 115);
+/// Couplings, apart from the shafts they join.
+const COUPLING: RGBColor = RGBColor(226, 168, 92);
+const COUPLING_EDGE: RGBColor = RGBColor(150, 95, 30);
 
 /// Axial positions of the nodes, m (each segment split into its equal elements).
 pub(crate) fn node_positions(b: &BeamInput) -> Vec<f64> {
@@ -73,6 +76,29 @@ fn disk_size(m: f64, ip: f64, id: f64) -> (Option<f64>, Option<f64>) {
         Some(2.0 * r2.sqrt()),
         (h2 > 0.0 && h2.is_finite()).then(|| h2.sqrt()),
     )
+}
+
+/// A coupling drawn from `a` to `e` px, `h` px high: two flanges and a spring between them.
+fn coupling(root: &Area, a: i32, e: i32, h: i32) -> Result<(), Err> {
+    let flange = ((e - a) / 4).clamp(2, 10);
+    for (l, r) in [(a, a + flange), (e - flange, e)] {
+        root.draw(&Rectangle::new(
+            [(l, AXIS - h), (r, AXIS + h)],
+            COUPLING.filled(),
+        ))?;
+        root.draw(&Rectangle::new([(l, AXIS - h), (r, AXIS + h)], STEEL_EDGE))?;
+    }
+    let (l, r) = (a + flange, e - flange);
+    let turns = 4;
+    let mut zigzag = vec![(l, AXIS)];
+    for k in 0..2 * turns {
+        let xk = l + (r - l) * (2 * k + 1) / (4 * turns);
+        let up = if k % 2 == 0 { -h / 2 } else { h / 2 };
+        zigzag.push((xk, AXIS + up));
+    }
+    zigzag.push((r, AXIS));
+    root.draw(&PathElement::new(zigzag, COUPLING_EDGE.stroke_width(2)))?;
+    Ok(())
 }
 
 /// A sketch of the rotor; non-beam rotors get a short note instead.
@@ -177,6 +203,18 @@ fn beam(root: &Area<'_>, b: &BeamInput) -> Result<(), Err> {
         );
         let h = hl.max(hr);
         let (a, e) = (px(x), px(x + s.length));
+        if s.coupling.is_some() {
+            // A coupling between two shafts: a flange at each end, a spring between them.
+            coupling(root, a, e, h)?;
+            labels.block([a, AXIS - h, e, AXIS + h]);
+            let end = (node + 1).min(nodes.len() - 1);
+            for half in &mut half_at[node.min(end)..=end] {
+                *half = (*half).max(h);
+            }
+            node += 1;
+            x += s.length;
+            continue;
+        }
         let outline = section(a, e, hl, hr);
         root.draw(&Polygon::new(outline.clone(), STEEL.filled()))?;
         let mut closed = outline;

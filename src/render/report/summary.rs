@@ -27,6 +27,22 @@ pub(super) fn model_rows(report: &ReportResponse, rotor: &RotorInput) -> Vec<Str
                 ),
             );
             row("elements / nodes", format!("{elements} / {}", elements + 1));
+            let couplings = b.shaft.iter().filter(|s| s.coupling.is_some()).count();
+            if couplings > 0 {
+                // Shafts: the runs of segments between couplings.
+                let shafts = b
+                    .shaft
+                    .iter()
+                    .enumerate()
+                    .filter(|(i, s)| {
+                        s.coupling.is_none() && (*i == 0 || b.shaft[i - 1].coupling.is_some())
+                    })
+                    .count();
+                row(
+                    "couplings",
+                    format!("{couplings}, joining {shafts} shafts (rotating springs and dampers)"),
+                );
+            }
             if !b.sleeves.is_empty() {
                 row(
                     "sleeves",

@@ -57,6 +57,19 @@ def ross_elements(rotor):
     mats = materials(rotor)
     shaft, lengths = [], []
     for seg in rotor["shaft"]:
+        c = seg.get("coupling")
+        if c is not None:
+            # ROSS's CouplingElement, isotropic; ROSS adds its C to the (nonrotating) C.
+            ip = c.get("polar_inertia", [0.0, 0.0])
+            tid = c.get("transverse_inertia", [ip[0] / 2, ip[1] / 2])
+            kt, kr = c.get("translational_stiffness", 0.0), c.get("angular_stiffness", 0.0)
+            ct, cr = c.get("translational_damping", 0.0), c.get("angular_damping", 0.0)
+            shaft.append(rs.CouplingElement(
+                n=len(shaft), m_l=c["mass"][0], m_r=c["mass"][1], Ip_l=ip[0], Ip_r=ip[1],
+                Id_l=tid[0], Id_r=tid[1], kt_x=kt, kt_y=kt, kr_x=kr, kr_y=kr, ct_x=ct, ct_y=ct,
+                cr_x=cr, cr_y=cr, L=seg["length"], o_d=seg["outer_diameter"]))
+            lengths.append(seg["length"])
+            continue
         n = seg.get("elements", 1)
         for kw in pieces(seg, [seg["length"] / n] * n):
             shaft.append(rs.ShaftElement(n=len(shaft), material=mats[seg["material"]], **kw))
@@ -146,10 +159,51 @@ def sleeved():
             "disks": DISK, "supports": BEARINGS}
 
 
+def train(damped):
+    """A train of three shafts on one axis joined by two flexible couplings: a 60 mm motor
+    shaft of 0.8 m (6 elements, a 40 kg rotor core at node 3) on bearings at nodes 0 and 6, a
+    coupling (0.12 m; kt 2e7 N/m, kr 8e4 N m/rad; halves 6 and 5 kg, Ip 0.03 and 0.025 kg m^2,
+    Id 0.018 and 0.015 kg m^2), a 50 mm gearbox-like shaft of 0.6 m (4 elements, a 20 kg disk)
+    on bearings at its ends, a second coupling (0.1 m; kt 1e7 N/m, kr 5e4 N m/rad; 4 and 4 kg,
+    Ip 0.02 kg m^2 each, Id by ROSS's default, half Ip) and a 70 mm driven shaft of 1.0 m (8
+    elements, two 30 kg impellers) on bearings at its ends: 20 elements, 21 nodes. The bearings
+    are anisotropic and cross-coupled. With `damped`, the couplings have dampers too (ct 300 N
+    s/m, cr 2 N m s/rad): ROSS adds them to the nonrotating C, Whirl turns them with the shaft,
+    so at rest the two are the same and spun they differ by the circulatory stiffness
+    of the rotating dampers."""
+    def seg(L, d, n):
+        return {"length": L, "outer_diameter": d, "material": "steel", "elements": n}
+    c1 = {"translational_stiffness": 2.0e7, "angular_stiffness": 8.0e4, "mass": [6.0, 5.0],
+          "polar_inertia": [0.03, 0.025], "transverse_inertia": [0.018, 0.015]}
+    c2 = {"translational_stiffness": 1.0e7, "angular_stiffness": 5.0e4, "mass": [4.0, 4.0],
+          "polar_inertia": [0.02, 0.02]}
+    if damped:
+        for c in (c1, c2):
+            c.update(translational_damping=300.0, angular_damping=2.0)
+
+    def bearing(node, k):
+        return {"node": node, "kxx": k, "kxy": 0.1 * k, "kyx": -0.15 * k, "kyy": 1.4 * k,
+                "cxx": 1.0e-4 * k, "cxy": 5.0e-6 * k, "cyx": 8.0e-6 * k, "cyy": 1.3e-4 * k}
+    return {"type": "beam", "materials": {"steel": dict(STEEL)},
+            "shaft": [seg(0.8, 0.06, 6),
+                      {"length": 0.12, "outer_diameter": 0.14, "coupling": c1},
+                      seg(0.6, 0.05, 4),
+                      {"length": 0.1, "outer_diameter": 0.12, "coupling": c2},
+                      seg(1.0, 0.07, 8)],
+            "disks": [{"node": 3, "mass": 40.0, "polar_inertia": 0.4, "transverse_inertia": 0.25},
+                      {"node": 9, "mass": 20.0, "polar_inertia": 0.15, "transverse_inertia": 0.09},
+                      {"node": 15, "mass": 30.0, "polar_inertia": 0.3, "transverse_inertia": 0.17},
+                      {"node": 18, "mass": 30.0, "polar_inertia": 0.3, "transverse_inertia": 0.17}],
+            "supports": [bearing(0, 2.0e7), bearing(6, 2.0e7), bearing(7, 1.5e7),
+                         bearing(11, 1.5e7), bearing(12, 3.0e7), bearing(20, 3.0e7)]}
+
+
 def main():
     case("tapered.json", tapered.__doc__, tapered(), SPEEDS, (5, 1e-4, 0.0, UNB, [0, 2, 5, 8, 10]))
     case("loaded.json", loaded.__doc__, loaded(), SPEEDS, (5, 1e-4, 0.4, UNB, [0, 3, 5, 10]))
     case("sleeved.json", sleeved.__doc__, sleeved(), SPEEDS, (5, 1e-4, 0.0, UNB, [0, 4, 5, 8, 10]))
+    case("train.json", train.__doc__, train(False), SPEEDS, (15, 1e-4, 0.0, UNB, [0, 3, 6, 7, 9, 12, 15, 20]))
+    case("train_damped.json", train.__doc__, train(True), [0.0, 1500.0], (15, 1e-4, 0.0, [0.0], [3]))
 
 
 if __name__ == "__main__":
