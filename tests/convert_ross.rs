@@ -464,6 +464,45 @@ async fn elements_that_cannot_be_converted_are_named_by_their_tables() {
     );
 }
 
+/// A train of three shafts joined by two ROSS `CouplingElement`s: each a coupling segment on its
+/// node (the second's `Id` by ROSS's default, half its `Ip`), ROSS's poles and unbalance
+/// response on all three shafts; an anisotropic coupling, and one sharing its node with a shaft
+/// element, are refused naming the table.
+#[tokio::test]
+async fn a_train_of_three_shafts_joined_by_couplings() {
+    let rotor = machine("train", &["CouplingElement's dampers"]).await;
+    let shaft = rotor["shaft"].as_array().unwrap();
+    let couplings: Vec<&Value> = shaft
+        .iter()
+        .filter(|s| s.get("coupling").is_some())
+        .collect();
+    assert_eq!(couplings.len(), 2, "{shaft:?}");
+    assert_eq!(
+        couplings[1]["coupling"]["transverse_inertia"],
+        json!([0.01, 0.01])
+    );
+    let base = toml("train");
+    let table = "CouplingElement_Coupling 6";
+    let start = base.find(&format!("[\"{table}\"]")).unwrap();
+    let kt_y = start + base[start..].find("kt_y = ").unwrap();
+    let anisotropic = format!(
+        "{}kt_y = 2.5e7{}",
+        &base[..kt_y],
+        &base[kt_y + "kt_y = 20000000.0".len()..]
+    );
+    let (status, v) = convert(&anisotropic).await;
+    assert_eq!(status, 422, "{v}");
+    assert!(
+        message(&v, &format!("{table}.kt_y")).contains("isotropic"),
+        "{v}"
+    );
+    let n = start + base[start..].find("\nn = 6\n").unwrap();
+    let shared = format!("{}\nn = 5\n{}", &base[..n], &base[n + "\nn = 6\n".len()..]);
+    let (status, v) = convert(&shared).await;
+    assert_eq!(status, 422, "{v}");
+    assert!(paths(&v).contains(&table.to_string()), "{v}");
+}
+
 #[tokio::test]
 async fn a_body_not_declared_as_toml_is_a_415() {
     for ct in [Some("application/json"), Some("text/plain"), None] {

@@ -24,6 +24,9 @@
 //! - Point masses: the shaft's nodes or nodes off it, numbered as ROSS numbers them. Whirl's
 //!   point mass is isotropic: `mx != my` is `min(mx, my)` plus a support of mass coefficients
 //!   only (`mxx`, `myy`) on the node, exactly ROSS's mass matrix.
+//! - Couplings (`CouplingElement`): a segment `{"length", "outer_diameter", "coupling"}` on
+//!   their node, isotropic (`ross::coupling`); their dampers turn with the shafts in Whirl
+//!   (a warning says so).
 //! - Axial and torsional degrees of freedom are dropped (a Whirl rotor is lateral), with
 //!   `kzz`, `czz`, `mzz` and `mz`.
 
@@ -31,7 +34,8 @@ use std::collections::BTreeMap;
 
 use serde_json::{Map, Value, json};
 
-use super::{Bearing, COEFFICIENTS, Material, RossFile, ShaftElement, ShearMethod};
+use super::coupling::by_node_of;
+use super::{Bearing, COEFFICIENTS, Coupling, Material, RossFile, ShaftElement, ShearMethod};
 use crate::model::{Invalid, Limits};
 
 /// A converted rotor and what the conversion says about it.
@@ -69,20 +73,35 @@ pub fn to_whirl(file: &RossFile, limits: &Limits) -> Result<Converted, Invalid> 
             .into(),
     );
 
-    // The shaft: elements by node, in the file's order at each node.
+    // The shaft: elements by node, in the file's order at each node; a coupling on a node of
+    // its own.
     let mut by_node: BTreeMap<usize, Vec<&ShaftElement>> = BTreeMap::new();
     for e in &file.shaft {
         by_node.entry(e.n).or_default().push(e);
     }
-    let elements = by_node.len();
+    let couplings = match by_node_of(file, &by_node, &mut warnings) {
+        Ok(c) => c,
+        Err(e) => {
+            bad.extend(e);
+            return Err(bad);
+        }
+    };
+    // Every node's element, shaft or coupling, by node.
+    let mut line: BTreeMap<usize, Result<&Vec<&ShaftElement>, &Coupling>> =
+        by_node.iter().map(|(&n, g)| (n, Ok(g))).collect();
+    line.extend(couplings.iter().map(|(&n, &c)| (n, Err(c))));
+    let elements = line.len();
     let max_elements = (limits.max_dofs / 2).saturating_sub(1).max(1);
-    if let Some((k, (&n, group))) = by_node.iter().enumerate().find(|(k, (n, _))| *k != **n) {
+    if let Some((k, (&n, e))) = line.iter().enumerate().find(|(k, (n, _))| *k != **n) {
+        let (table, at) = match e {
+            Ok(group) => (group[0].table.as_str(), group[0].line),
+            Err(c) => (c.table.as_str(), c.line),
+        };
         bad.push(
-            group[0].table.as_str(),
+            table,
             format!(
-                "starts at node {n} (line {}), but no shaft element starts at node {k}: ROSS's \
-                 shaft elements run from node 0 without gaps",
-                group[0].line
+                "starts at node {n} (line {at}), but no shaft element starts at node {k}: ROSS's \
+                 shaft elements run from node 0 without gaps"
             ),
         );
         return Err(bad);
@@ -102,13 +121,21 @@ pub fn to_whirl(file: &RossFile, limits: &Limits) -> Result<Converted, Invalid> 
     let last_shaft_node = elements; // nodes 0..=elements
 
     let mut materials = Materials::default();
-    let mut segments: Vec<(Value, &ShaftElement, usize)> = vec![];
+    // Each segment with the shaft element it repeats (none for a coupling).
+    let mut segments: Vec<(Value, Option<&ShaftElement>, usize)> = vec![];
     let mut sleeves = vec![];
-    for group in by_node.values() {
+    for element in line.values() {
+        let group = match element {
+            Ok(group) => group,
+            Err(c) => {
+                segments.push((c.segment(), None, 1));
+                continue;
+            }
+        };
         let e = group[0];
         let material = materials.name(&e.material);
         // Joined to the previous segment when that is exactly the same uniform element.
-        if let Some((seg, prev, count)) = segments.last_mut()
+        if let Some((seg, Some(prev), count)) = segments.last_mut()
             && mergeable(prev, e)
         {
             let k = (*count + 1) as f64;
@@ -122,7 +149,7 @@ pub fn to_whirl(file: &RossFile, limits: &Limits) -> Result<Converted, Invalid> 
         }
         let mut seg = element_fields(e, &material);
         seg.insert("length".into(), json!(e.length));
-        segments.push((Value::Object(seg), e, 1));
+        segments.push((Value::Object(seg), Some(e), 1));
         for s in &group[1..] {
             if (s.length - e.length).abs() > SAME_LENGTH * e.length {
                 bad.push(

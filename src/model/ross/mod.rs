@@ -22,10 +22,12 @@ use toml::Spanned;
 use toml::de::{DeTable, DeValue};
 use utoipa::ToSchema;
 
+mod coupling;
 mod elements;
 
 use super::Invalid;
 use super::Limits;
+pub use coupling::Coupling;
 use elements::{bearing, disk, point_mass, shaft_element};
 
 pub use convert::Converted;
@@ -159,6 +161,8 @@ pub struct RossFile {
     /// The rotor parameters that are set (`min_w`, `max_w`, `rated_w`).
     pub parameters: Vec<String>,
     pub shaft: Vec<ShaftElement>,
+    /// Couplings in the shaft line, each on its own node.
+    pub couplings: Vec<Coupling>,
     pub disks: Vec<Disk>,
     pub point_masses: Vec<PointMass>,
     pub bearings: Vec<Bearing>,
@@ -191,11 +195,6 @@ const UNSUPPORTED: &[(&str, &str)] = &[
         "MagneticBearingElement",
         "an active magnetic bearing: its force comes from a controller (PID gains, a transfer \
          function, sensor and amplifier gains), which a Whirl support cannot hold",
-    ),
-    (
-        "CouplingElement",
-        "a coupling joins two shafts with torsional and axial flexibility; a Whirl beam rotor \
-         is one shaft",
     ),
     (
         "GearElement",
@@ -477,6 +476,11 @@ impl RossFile {
                         file.shaft.push(e);
                     }
                 }
+                "CouplingElement" => {
+                    if let Some(c) = coupling::coupling(&mut r, tab) {
+                        file.couplings.push(c);
+                    }
+                }
                 "DiskElement" => {
                     if let Some(d) = disk(&mut r, tab) {
                         file.disks.push(d);
@@ -500,11 +504,16 @@ impl RossFile {
                     } else if let Some((_, why)) = UNSUPPORTED.iter().find(|(u, _)| *u == c) {
                         r.push(tab, None, tab.line, format!("ROSS's {c}: {why}"));
                     } else {
-                        let known: Vec<&str> = ["ShaftElement", "DiskElement", "PointMass"]
-                            .into_iter()
-                            .chain(BEARINGS.iter().map(|(b, _)| *b))
-                            .chain(SEALS.iter().copied())
-                            .collect();
+                        let known: Vec<&str> = [
+                            "ShaftElement",
+                            "CouplingElement",
+                            "DiskElement",
+                            "PointMass",
+                        ]
+                        .into_iter()
+                        .chain(BEARINGS.iter().map(|(b, _)| *b))
+                        .chain(SEALS.iter().copied())
+                        .collect();
                         r.push(
                             tab,
                             None,
@@ -549,7 +558,7 @@ fn count(tables: &[(&str, Tab)], limits: &Limits, bad: &mut Invalid) {
     // The shaft elements on distinct nodes make the dofs (checked once their nodes are read);
     // sleeves add none, but at most one per shaft element's worth is read.
     let max_elements = (limits.max_dofs / 2).saturating_sub(1).max(1) as u64;
-    let shaft = of("ShaftElement");
+    let shaft = of("ShaftElement") + of("CouplingElement");
     if shaft > 2 * max_elements {
         bad.push(
             "ShaftElement",

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""ROSS 2.3.0 references for `POST /v1/convert/ross` (issue 29): five machines built in ROSS,
+"""ROSS 2.3.0 references for `POST /v1/convert/ross` (issue 29): six machines built in ROSS,
 saved by ROSS's own `Rotor.save()`, and ROSS's results on the rotor it loads back from that file.
 
 Rerun (from the repository root, ~1 min on one core):
@@ -56,6 +56,10 @@ axial_rayleigh      10 elements under 1.5e4 N of compression (axial_force = -1.5
 table70             shaft A with a disk, both bearings tabulated at 70 speeds (a plain-bearing-like
                     law, smooth), and a cross-coupled SealElement tabulated at 3 speeds
                     (interp1d, quadratic).
+train               a train: shafts of 6, 4 and 8 elements (60, 50 and 70 mm) joined by two
+                    CouplingElements (masses, inertias, kt and kr equal in x and y; the second
+                    with Id left to ROSS's default, Ip / 2), four disks, six anisotropic
+                    cross-coupled bearings.
 """
 
 import json
@@ -318,6 +322,28 @@ def table70():
     return rs.Rotor(shaft_a(), disks, bearings)
 
 
+def train():
+    def shaft(n, L, od):
+        return [rs.ShaftElement(L=L / n, idl=0.0, odl=od, material=STEEL) for _ in range(n)]
+
+    def bearing(n, k):
+        return rs.BearingElement(n=n, kxx=k, kxy=0.1 * k, kyx=-0.15 * k, kyy=1.4 * k,
+                                 cxx=1e-4 * k, cxy=5e-6 * k, cyx=8e-6 * k, cyy=1.3e-4 * k)
+    elements = (shaft(6, 0.8, 0.06)
+                + [rs.CouplingElement(m_l=6.0, m_r=5.0, Ip_l=0.03, Ip_r=0.025, Id_l=0.018,
+                                      Id_r=0.015, kt_x=2e7, kt_y=2e7, kr_x=8e4, kr_y=8e4,
+                                      L=0.12, o_d=0.14)]
+                + shaft(4, 0.6, 0.05)
+                + [rs.CouplingElement(m_l=4.0, m_r=4.0, Ip_l=0.02, Ip_r=0.02, kt_x=1e7,
+                                      kt_y=1e7, kr_x=5e4, kr_y=5e4, L=0.1, o_d=0.12)]
+                + shaft(8, 1.0, 0.07))
+    disks = [rs.DiskElement(n=3, m=40.0, Id=0.25, Ip=0.4), rs.DiskElement(n=9, m=20.0, Id=0.09, Ip=0.15),
+             rs.DiskElement(n=15, m=30.0, Id=0.17, Ip=0.3), rs.DiskElement(n=18, m=30.0, Id=0.17, Ip=0.3)]
+    bearings = [bearing(0, 2e7), bearing(6, 2e7), bearing(7, 1.5e7), bearing(11, 1.5e7),
+                bearing(12, 3e7), bearing(20, 3e7)]
+    return rs.Rotor(elements, disks, bearings)
+
+
 UNB_PEDESTALS = [20.0, 50.0, 80.0, 100.0, 115.0, 122.0, 127.0, 130.0, 132.0, 134.0, 137.0,
                  142.0, 150.0, 170.0, 220.0, 350.0, 600.0, 1000.0, 1500.0, 2500.0]
 UNB_TABLE70 = [20.0, 50.0, 80.0, 110.0, 135.0, 145.0, 150.0, 154.0, 156.0, 158.0, 161.0,
@@ -341,6 +367,9 @@ CASES = [
                      2500.0], [0, 4, 6, 10])),
     ("table70", table70, [30.0, 777.7, 1500.0, 4000.0],
      (5, 1e-4, 0.0, UNB_TABLE70, [0, 5, 7, 10])),
+    ("train", train, [0.0, 500.0, 1500.0, 3000.0],
+     (15, 1e-4, 0.2, [100.0, 300.0, 380.0, 405.0, 415.0, 425.0, 440.0, 460.0, 500.0, 600.0,
+                      700.0, 750.0, 900.0, 1200.0, 1500.0, 2000.0], [0, 3, 6, 7, 9, 12, 15, 20])),
 ]
 
 
