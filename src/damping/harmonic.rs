@@ -16,6 +16,7 @@
 //! 3.5e-10, and costs a factor of the rotor's size, not of the state's `2n + p`.
 
 use crate::linalg::{self, CMat, LinalgError, c64};
+use std::sync::Arc;
 
 /// The second-order matrices a [`StateModel`](super::StateModel) was built from, kept by
 /// [`StateModel::harmonic`](super::StateModel::harmonic) for constant coefficients.
@@ -67,7 +68,8 @@ impl Physical {
 /// `Z(sigma) x = -M b1 - (sigma M + D) b2 + U diag(k_j / (a_j - sigma)) b3`.
 pub struct ShiftInvert {
     sigma: c64,
-    mass: CMat,
+    /// The model's matrices (its `M`), shared, not copied.
+    phys: Arc<Physical>,
     /// `sigma M + D(Omega)`.
     damping: CMat,
     /// `U diag(k)`, `U^H diag(d)` rows and `1 / (a_j - sigma)`.
@@ -124,7 +126,7 @@ impl Physical {
     }
 
     /// `(A(speed) - sigma I)^-1`, one factor of `Z(sigma)`.
-    pub fn shift_invert(&self, speed: f64, sigma: c64) -> ShiftInvert {
+    pub fn shift_invert(self: &Arc<Self>, speed: f64, sigma: c64) -> ShiftInvert {
         let n = self.mass.nrows();
         let p = self.stiffness.len();
         let damping = CMat::from_fn(n, n, |i, j| {
@@ -138,7 +140,7 @@ impl Physical {
             .collect();
         ShiftInvert {
             sigma,
-            mass: self.mass.clone(),
+            phys: self.clone(),
             damping,
             uk: CMat::from_fn(n, p, |i, j| self.u[(i, j)] * self.stiffness[j]),
             dyx: CMat::from_fn(p, n, |j, c| self.uh[(j, c)] * self.rate[j]),
@@ -151,12 +153,12 @@ impl Physical {
 impl ShiftInvert {
     /// `(A - sigma I)^-1 b`, `b = [b1, b2, b3]` (`n`, `n`, `p`).
     pub fn solve(&self, b: &[c64]) -> Vec<c64> {
-        let n = self.mass.nrows();
+        let n = self.phys.mass.nrows();
         let (b1, rest) = b.split_at(n);
         let (b2, b3) = rest.split_at(n);
         let minus = c64::new(-1.0, 0.0);
         let mut x = vec![c64::new(0.0, 0.0); n];
-        linalg::add_matvec(&mut x, &self.mass, b1, minus);
+        linalg::add_matvec(&mut x, &self.phys.mass, b1, minus);
         linalg::add_matvec(&mut x, &self.damping, b2, minus);
         if !b3.is_empty() {
             let w: Vec<c64> = b3.iter().zip(&self.dyy).map(|(b, d)| b * d).collect();

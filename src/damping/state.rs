@@ -168,7 +168,9 @@ struct Dense {
 
 impl StateModel {
     pub fn new(so: &SecondOrder, br: &Branches) -> Result<Self, LinalgError> {
-        let mut m = Self::harmonic(so, br)?;
+        // Formed at once (its solve with M is the check of M), then the second-order form
+        // dropped.
+        let mut m = Self::kept(so, br);
         m.force()?;
         m.physical = None;
         Ok(m)
@@ -182,6 +184,11 @@ impl StateModel {
         // M is factored now, as forming `A` would, so that a singular one fails here, not
         // where `A` is first asked for.
         linalg::mass_factors(&so.mass)?;
+        Ok(Self::kept(so, br))
+    }
+
+    /// The model with its second-order form and no state matrix yet.
+    fn kept(so: &SecondOrder, br: &Branches) -> Self {
         // U diag(nu k) U^H, a product of n x p factors (p reaches 6n with nonviscous damping).
         let u = &br.coupling;
         let nu_k: Vec<c64> = br.main_stiffness.iter().map(|&k| real(k)).collect();
@@ -198,7 +205,7 @@ impl StateModel {
             rate: br.rate.clone(),
             spin: br.spin.clone(),
         };
-        Ok(StateModel {
+        StateModel {
             points: vec![0.0],
             dense: OnceLock::new(),
             n: so.n(),
@@ -206,7 +213,7 @@ impl StateModel {
             stiffness: so.stiffness.clone(),
             schedule: None,
             physical: Some(Arc::new(physical)),
-        })
+        }
     }
 
     /// Forms the state matrix now (where it may not be formed later: the second-order form
