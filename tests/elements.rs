@@ -125,6 +125,49 @@ fn a_trains_weight_and_bearing_loads_count_its_couplings() {
     assert!((loads / s.weight - 1.0).abs() < 1e-9, "{loads} N");
 }
 
+/// A mode shape is drawn straight across a coupling (a spring between two shaft ends, no
+/// beam to interpolate) and as the beam's cubic elsewhere: the report's profile of the train's
+/// first forward mode, and the layout every modal answer carries (`couplings`: 6 and 11).
+#[test]
+fn mode_shapes_are_straight_across_couplings() {
+    use whirl::analysis::audit::cases::profile;
+    use whirl::analysis::audit::statics::{Held, static_deflection};
+    use whirl::answer::convert::shaft_layout;
+    let d = common::ross::data("train.json");
+    let input: RotorInput = serde_json::from_value(d["rotor"].clone()).unwrap();
+    let rotor = Rotor::parse(&input, &Limits::default()).unwrap();
+    let Rotor::Beam(b) = &rotor else {
+        panic!("a beam rotor")
+    };
+    assert_eq!(b.couplings(), vec![6, 11]);
+    assert_eq!(shaft_layout(&rotor).unwrap().couplings, vec![6, 11]);
+    let s = system(&d["rotor"]);
+    let model = DampedModel::build(&s, &damping(json!({"model": "viscous"}), s.n())).unwrap();
+    let first = poles_at(&model, 0.0)
+        .unwrap()
+        .rotor
+        .iter()
+        .filter(|p| p.whirl == Whirl::Forward && p.s.im > 0.0)
+        .min_by(|a, b| a.s.im.total_cmp(&b.s.im))
+        .unwrap()
+        .s;
+    let statics = static_deflection(b, 9.80665, Held::Elastic { speed: 0.0 }).unwrap();
+    let shape = profile(&s, &model, 0.0, first, &statics, &b.couplings()).unwrap();
+    let z = |n: usize| statics.nodes[n].position;
+    let inside = |a: usize| -> Vec<(f64, f64)> {
+        shape
+            .curve
+            .iter()
+            .copied()
+            .filter(|&(x, _)| x > z(a) + 1e-12 && x < z(a + 1) - 1e-12)
+            .collect()
+    };
+    // Across each coupling no interpolated point (the two nodes joined straight); inside a
+    // beam element the cubic's points.
+    assert!(inside(6).is_empty() && inside(11).is_empty());
+    assert!(!inside(5).is_empty() && !inside(12).is_empty());
+}
+
 /// A coupling segment takes no shaft field, its coefficients must be finite and non-negative,
 /// and no sleeve may span it: 400s naming each field.
 #[test]

@@ -100,6 +100,7 @@ pub fn shaft_layout(rotor: &crate::model::rotor::Rotor) -> Option<api::ShaftLayo
         bearings,
         seals,
         disks,
+        couplings: b.couplings(),
     })
 }
 

@@ -143,6 +143,12 @@ impl BeamRotor {
     pub fn elements(&self) -> &[Element] {
         &self.elements
     }
+    /// Left nodes of the couplings (element `e` joins nodes `e` and `e + 1`).
+    pub fn couplings(&self) -> Vec<usize> {
+        (0..self.elements.len())
+            .filter(|&e| self.elements[e].beam().is_none())
+            .collect()
+    }
     /// Elements laid over the shaft's, their matrices added to those of the element under.
     pub fn sleeves(&self) -> &[Sleeve] {
         &self.sleeves

@@ -85,13 +85,15 @@ pub const CURVE_POINTS: usize = 9;
 /// product with the node that moves most (in phase or in opposition). Between two nodes that
 /// keep their rotations the translations are the element's cubic Hermite interpolation of
 /// both ends' translations and rotations (the complex rotation `phi_y - i phi_x` is
-/// `d(x + i y)/dz`), then reduced the same way.
+/// `d(x + i y)/dz`), then reduced the same way; across a coupling (`couplings`: their left
+/// nodes), a spring and no beam, the nodes are joined straight.
 pub fn profile(
     system: &RotorSystem,
     damped: &DampedModel,
     speed: f64,
     pole: c64,
     statics: &StaticResult,
+    couplings: &[usize],
 ) -> Result<Shape, AnalysisError> {
     let set = poles_at(damped, speed)?;
     let Some(p) = set
@@ -136,7 +138,8 @@ pub fn profile(
     let mut curve = vec![];
     for w in nodes.windows(2) {
         let ((n0, z0, t0, r0), (n1, z1, t1, r1)) = (w[0], w[1]);
-        let (Some(r0), Some(r1), true) = (r0, r1, n1 == n0 + 1) else {
+        let beam = n1 == n0 + 1 && !couplings.contains(&n0);
+        let (Some(r0), Some(r1), true) = (r0, r1, beam) else {
             curve.extend([(z0, signed(t0)), (z1, signed(t1))]);
             continue;
         };

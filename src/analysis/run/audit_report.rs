@@ -147,7 +147,14 @@ fn report_cases(
     let mut out = vec![];
     for (i, critical) in forward.into_iter().take(MAX_CASES).enumerate() {
         control.check().map_err(|_| RunError::Cancelled)?;
-        let shape = cases::profile(&system, &damped, critical.speed, critical.pole, result)?;
+        let shape = cases::profile(
+            &system,
+            &damped,
+            critical.speed,
+            critical.pole,
+            result,
+            &rotor.couplings(),
+        )?;
         let overhung = |left: bool| cases::overhung_mass(rotor, result, left);
         let placed = placement::place(&shape.nodes, &journals, &overhung, rpm, *gravity);
         if placed.is_empty() {

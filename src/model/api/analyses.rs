@@ -110,6 +110,10 @@ pub struct ShaftLayout {
     pub seals: Vec<usize>,
     /// Nodes with a disk.
     pub disks: Vec<usize>,
+    /// Left nodes of the couplings (each joins its node to the next): between them the shape
+    /// is drawn straight, not as a beam's.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub couplings: Vec<usize>,
 }
 
 /// Answer of `POST /v1/modal`.

@@ -31,8 +31,8 @@ const PER_ELEMENT: usize = 12;
 
 /// The mode shape's real part along the shaft: `(position, value)` at the nodes, and between
 /// two consecutive nodes with slopes the element's cubic Hermite shape functions of both
-/// ends' translations and slopes (the beam element's own interpolation); without a layout,
-/// against node number, the nodes joined straight.
+/// ends' translations and slopes (the beam element's own interpolation; a coupling's nodes
+/// joined straight); without a layout, against node number, the nodes joined straight.
 fn curve(pole: &Pole, shaft: Option<&ShaftLayout>) -> Vec<(f64, f64)> {
     let mut nodes: Vec<&NodeDisplacement> = pole.shape.iter().flatten().collect();
     nodes.sort_by_key(|d| d.node);
@@ -43,7 +43,10 @@ fn curve(pole: &Pole, shaft: Option<&ShaftLayout>) -> Vec<(f64, f64)> {
     let mut out: Vec<(f64, f64)> = vec![];
     for (k, d) in nodes.iter().enumerate() {
         let Some(z0) = z(d) else { continue };
-        let next = nodes.get(k + 1).filter(|e| e.node == d.node + 1);
+        // Across a coupling (a spring, not a beam) the nodes are joined straight.
+        let next = nodes
+            .get(k + 1)
+            .filter(|e| e.node == d.node + 1 && !shaft.couplings.contains(&d.node));
         match (next, d.slope, next.and_then(|e| e.slope)) {
             (Some(e), Some(s0), Some(s1)) if z(e).is_some() => {
                 let l = z(e).unwrap_or(z0) - z0;
@@ -66,7 +69,8 @@ fn curve(pole: &Pole, shaft: Option<&ShaftLayout>) -> Vec<(f64, f64)> {
 }
 
 /// The rotor in a strip `r` (pixels) over the plot, on the plot's x axis: the shaft as a
-/// line, disks as blocks, bearings as triangles, seals as small squares.
+/// line, couplings as amber blocks on it, disks as blocks, bearings as triangles, seals as
+/// small squares.
 fn schematic(svg: &mut Svg, p: &Panel, r: [f64; 4], shaft: &ShaftLayout) {
     let mid = (r[1] + r[3]) / 2.0;
     let x = |z: f64| p.px((z, p.y.lo)).0;
@@ -80,6 +84,17 @@ fn schematic(svg: &mut Svg, p: &Panel, r: [f64; 4], shaft: &ShaftLayout) {
         1.0,
         Some(FRAME),
     );
+    // Couplings: a gap in the shaft bridged by a flanged block.
+    for &n in &shaft.couplings {
+        if let (Some(&a), Some(&b)) = (shaft.positions.get(n), shaft.positions.get(n + 1)) {
+            svg.rect_px(
+                [x(a), mid - 6.0, x(b), mid + 6.0],
+                "#E2A85C",
+                1.0,
+                Some("#965F1E"),
+            );
+        }
+    }
     for &n in &shaft.disks {
         if let Some(&z) = shaft.positions.get(n) {
             svg.rect_px(
