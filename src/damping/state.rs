@@ -166,6 +166,18 @@ struct Dense {
     a1: Vec<CMat>,
 }
 
+impl Dense {
+    /// Entry `(i, j)` of `A(speed)` on the table's `segment` at `speed`.
+    fn entry(&self, (k, t): (usize, f64), speed: f64, i: usize, j: usize) -> c64 {
+        let at = |k: usize| self.a0[k][(i, j)] + self.a1[k][(i, j)] * speed;
+        if t == 0.0 {
+            at(k)
+        } else {
+            at(k) * (1.0 - t) + at(k + 1) * t
+        }
+    }
+}
+
 impl StateModel {
     pub fn new(so: &SecondOrder, br: &Branches) -> Result<Self, LinalgError> {
         // Formed at once (its solve with M is the check of M), then the second-order form
@@ -191,8 +203,9 @@ impl StateModel {
     fn kept(so: &SecondOrder, br: &Branches) -> Self {
         // U diag(nu k) U^H, a product of n x p factors (p reaches 6n with nonviscous damping).
         let u = &br.coupling;
+        let uh = u.adjoint().to_owned();
         let nu_k: Vec<c64> = br.main_stiffness.iter().map(|&k| real(k)).collect();
-        let kadd = linalg::scaled_product(u, &nu_k, &u.adjoint().to_owned());
+        let kadd = linalg::scaled_product(u, &nu_k, &uh);
         let physical = Physical {
             mass: so.mass.clone(),
             d0: so.d0.clone(),
@@ -200,7 +213,7 @@ impl StateModel {
             k0: &so.k0 + &kadd,
             k1: so.k1.clone(),
             u: u.clone(),
-            uh: u.adjoint().to_owned(),
+            uh,
             stiffness: br.stiffness.clone(),
             rate: br.rate.clone(),
             spin: br.spin.clone(),
@@ -334,7 +347,8 @@ impl StateModel {
     pub fn at(&self, speed: f64) -> CMat {
         let segment = self.segment(speed);
         let size = self.size();
-        let mut a = CMat::from_fn(size, size, |i, j| self.entry(segment, speed, i, j));
+        let dense = self.dense();
+        let mut a = CMat::from_fn(size, size, |i, j| dense.entry(segment, speed, i, j));
         if let Some(s) = &self.schedule {
             s.add_to(&mut a, speed);
         }
@@ -441,17 +455,6 @@ impl StateModel {
         }
     }
 
-    /// Entry `(i, j)` of `A(speed)` on the table's `segment` at `speed`.
-    fn entry(&self, (k, t): (usize, f64), speed: f64, i: usize, j: usize) -> c64 {
-        let Dense { a0, a1 } = self.dense();
-        let at = |k: usize| a0[k][(i, j)] + a1[k][(i, j)] * speed;
-        if t == 0.0 {
-            at(k)
-        } else {
-            at(k) * (1.0 - t) + at(k + 1) * t
-        }
-    }
-
     /// `(A(speed) - sigma I)^-1` by the structure of `A` (see [`ShiftInvert`]), through the
     /// second-order matrices where they are kept (no `A`, no `M^-1`).
     pub fn shift_invert(&self, speed: f64, sigma: c64) -> ShiftInvert {
@@ -462,9 +465,10 @@ impl StateModel {
         let segment = self.segment(speed);
         // With a schedule, the entries of the matrix it changes.
         let scheduled = self.schedule.as_ref().map(|_| self.at(speed));
+        let dense = self.dense();
         let e = |i: usize, j: usize| match &scheduled {
             Some(a) => a[(i, j)],
-            None => self.entry(segment, speed, i, j),
+            None => dense.entry(segment, speed, i, j),
         };
         let avv = CMat::from_fn(n, n, |i, j| {
             e(i, j) - if i == j { sigma } else { c64::new(0.0, 0.0) }

@@ -176,8 +176,10 @@ pub fn static_deflection(
     for d in rotor.disks() {
         force[d.node] -= gravity * d.mass;
     }
-    // A coupling's halves weigh on its nodes; it carries no distributed weight.
     let mut element_weight: Vec<f64> = rotor.element_masses().iter().map(|m| gravity * m).collect();
+    let weight = element_weight.iter().sum::<f64>()
+        + gravity * rotor.disks().iter().map(|d| d.mass).sum::<f64>();
+    // A coupling's halves weigh on its nodes; it carries no distributed weight.
     for (e, el) in rotor.elements().iter().enumerate() {
         if let Element::Coupling(c) = el {
             force[e] -= gravity * c.mass[0];
@@ -208,14 +210,6 @@ pub fn static_deflection(
         let d = t - z[e];
         (y.deflection(ends(&uy), d), x.deflection(ends(&ux), d))
     };
-    let couplings: f64 = rotor
-        .elements()
-        .iter()
-        .filter(|e| e.beam().is_none())
-        .map(Element::mass)
-        .sum();
-    let weight = element_weight.iter().sum::<f64>()
-        + gravity * (rotor.disks().iter().map(|d| d.mass).sum::<f64>() + couplings);
     // Left of a section: the upward resultant `up` and its first moment `up_z` about z = 0,
     // so that the moment of the left part about the section at z is `up z - up_z`. Inside
     // element e (from z_e, weight q = w_e / l_e per length) the part of the element left of

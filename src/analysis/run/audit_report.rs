@@ -144,6 +144,7 @@ fn report_cases(
         .filter(|k| k.whirl == Whirl::Forward)
         .collect();
     forward.sort_by(|a, b| a.speed.total_cmp(&b.speed));
+    let couplings = rotor.couplings();
     let mut out = vec![];
     for (i, critical) in forward.into_iter().take(MAX_CASES).enumerate() {
         control.check().map_err(|_| RunError::Cancelled)?;
@@ -153,7 +154,7 @@ fn report_cases(
             critical.speed,
             critical.pole,
             result,
-            &rotor.couplings(),
+            &couplings,
         )?;
         let overhung = |left: bool| cases::overhung_mass(rotor, result, left);
         let placed = placement::place(&shape.nodes, &journals, &overhung, rpm, *gravity);

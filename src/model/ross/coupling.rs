@@ -6,6 +6,7 @@
 //! torsional degrees of freedom.
 
 use super::*;
+use crate::model::api::CouplingInput;
 use serde_json::{Value, json};
 use std::collections::BTreeMap;
 
@@ -45,15 +46,8 @@ pub struct Coupling {
     /// `L`, `o_d` (ROSS draws with them; they place the nodes after it).
     pub length: f64,
     pub outer_diameter: f64,
-    /// `[left, right]`: `m`, `Ip`, `Id` (ROSS: `Id` absent or 0 is half of `Ip`).
-    pub mass: [f64; 2],
-    pub polar_inertia: [f64; 2],
-    pub transverse_inertia: [f64; 2],
-    /// `kt`, `kr`, `ct`, `cr` (x = y).
-    pub kt: f64,
-    pub kr: f64,
-    pub ct: f64,
-    pub cr: f64,
+    /// The coupling as Whirl takes it (`Id` absent or 0 is ROSS's half of `Ip`).
+    pub coupling: CouplingInput,
 }
 
 impl Coupling {
@@ -62,15 +56,7 @@ impl Coupling {
         json!({
             "length": self.length,
             "outer_diameter": self.outer_diameter,
-            "coupling": {
-                "translational_stiffness": self.kt,
-                "angular_stiffness": self.kr,
-                "translational_damping": self.ct,
-                "angular_damping": self.cr,
-                "mass": self.mass,
-                "polar_inertia": self.polar_inertia,
-                "transverse_inertia": self.transverse_inertia,
-            },
+            "coupling": self.coupling,
         })
     }
 }
@@ -117,13 +103,18 @@ pub(super) fn coupling(r: &mut Reader, tab: &Tab) -> Option<Coupling> {
         n: n?,
         length: length?,
         outer_diameter: od?,
-        mass: pair(m)?,
-        polar_inertia: ip,
-        transverse_inertia: [0, 1].map(|k| if id[k] != 0.0 { id[k] } else { ip[k] / 2.0 }),
-        kt: kt?,
-        kr: kr?,
-        ct: ct?,
-        cr: cr?,
+        coupling: CouplingInput {
+            translational_stiffness: kt?,
+            angular_stiffness: kr?,
+            translational_damping: ct?,
+            angular_damping: cr?,
+            loss_factor: 0.0,
+            mass: pair(m)?,
+            polar_inertia: ip,
+            transverse_inertia: Some(
+                [0, 1].map(|k| if id[k] != 0.0 { id[k] } else { ip[k] / 2.0 }),
+            ),
+        },
     })
     .filter(|_| ok)
 }
