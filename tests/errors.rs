@@ -189,6 +189,31 @@ async fn no_shaft_does_not_make_every_node_false() {
 }
 
 #[tokio::test]
+async fn a_segment_past_the_limit_is_named_alone_not_miscounted_in_a_total() {
+    // 640 + 960 elements: the second segment alone is past the default 1000 dof (499
+    // elements); a total of the first alone ("640 elements give 1282 degrees of freedom") once
+    // followed, which misstated the rotor's 1600.
+    let mut b = example("example1-nvd.modal.json");
+    let seg = b["rotor"]["shaft"][0].clone();
+    let mut first = seg.clone();
+    first["elements"] = json!(640);
+    let mut second = seg;
+    second["elements"] = json!(960);
+    b["rotor"]["shaft"] = json!([first, second]);
+    let (status, list) = errors("/v1/modal", &b).await;
+    assert_eq!(status, 422);
+    assert_eq!(
+        paths(&list),
+        ["rotor.shaft[0].elements", "rotor.shaft[1].elements"],
+        "{list:?}"
+    );
+    assert!(
+        list[1].1.contains("must be between 1 and 499 (got 960)"),
+        "{list:?}"
+    );
+}
+
+#[tokio::test]
 async fn no_count_in_a_message_underflows() {
     let mut bodies = vec![];
     let mut b = example("example1-nvd.modal.json");

@@ -217,6 +217,21 @@ fn every_estimate_bounds_the_measured_peak_heap() {
         "damping",
         json!({"rotor": compressor["rotor"], "damping": {"model": "nonviscous", "modes": 8}, "form": "state"}),
     ));
+    // A large rotor held sparse (`analysis::large`): 800 elements on cross-coupled bearings,
+    // 6408 states, bounded.
+    let steel_plain =
+        json!({"steel": {"young_modulus": 2.11e11, "density": 7810.0, "poisson_ratio": 0.3}});
+    let bearing = |node: usize| json!({"node": node, "kxx": 2.0e7, "kyy": 1.4e7, "kxy": 4.0e6, "kyx": -4.0e6, "cxx": 3.0e3, "cyy": 2.0e3});
+    cases.push((
+        "campbell, 800 elements held sparse",
+        "campbell",
+        json!({"rotor": {"type": "beam", "materials": steel_plain,
+                 "shaft": [{"length": 1.2, "outer_diameter": 0.08, "material": "steel", "elements": 800}],
+                 "disks": [{"node": 400, "mass": 20.0, "polar_inertia": 0.3, "transverse_inertia": 0.16}],
+                 "supports": [bearing(0), bearing(800)]},
+               "damping": {"model": "viscous"}, "max_frequency": 6000.0,
+               "speeds": {"start": 0, "stop": 2000, "count": 20}}),
+    ));
     // Hostile sizes are refused by counting, with nothing proportional allocated: a beam at
     // the dof limit with 12 + 12 branches per mode (26,000 states), and ten million elements.
     let steel = json!({"steel": {"young_modulus": 2.1e11, "density": 7800, "poisson_ratio": 0.3, "loss_factor": 0.01}});
@@ -230,6 +245,12 @@ fn every_estimate_bounds_the_measured_peak_heap() {
                  "shaft": [{"length": 2, "outer_diameter": 0.1, "material": "steel", "elements": 10_000_000}],
                  "supports": [{"node": 0, "stiffness": 1e8}]},
                "damping": {"model": "viscous"}, "speeds": {"start": 0, "stop": 1000, "count": 10}}),
+        // Bounded, so that it could be held sparse: refused by the sparse limit's count.
+        json!({"rotor": {"type": "beam", "materials": steel,
+                 "shaft": [{"length": 2, "outer_diameter": 0.1, "material": "steel", "elements": 10_000_000}],
+                 "supports": [{"node": 0, "stiffness": 1e8}]},
+               "damping": {"model": "viscous"}, "max_frequency": 5000,
+               "speeds": {"start": 0, "stop": 1000, "count": 10}}),
     ];
     for body in hostile {
         let req: SweepRequest = serde_json::from_value(body).unwrap();

@@ -229,6 +229,23 @@ pub fn campbell_below(
     }
 }
 
+/// [`campbell_below`] for a large rotor: the reduction and its check held sparse
+/// ([`super::large`]); no dense full model to fall back on.
+pub fn campbell_large(
+    system: &RotorSystem,
+    damping: &DampingModel,
+    speeds: &[f64],
+    keep: Keep,
+    max_states: usize,
+    control: &Control,
+) -> Result<CampbellResult, AnalysisError> {
+    let (model, reduction) =
+        super::large::reduce_for_sweep(system, damping, speeds, keep.below, max_states)?;
+    let mut r = campbell_kept(&model, speeds, keep, control)?;
+    r.reduction = Some(reduction);
+    Ok(r)
+}
+
 /// A bound that keeps the `n` rotor branches of lowest |frequency| at `speed` (`modes: n`):
 /// just above the n-th |frequency| of the full model there, with room for a reduced model's
 /// poles (within [`super::reduction::TOLERANCE`] of the full ones) to stay below it.

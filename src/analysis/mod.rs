@@ -5,6 +5,7 @@ pub mod audit;
 pub mod campbell;
 pub mod control;
 pub mod criticals;
+pub mod large;
 pub mod modal;
 pub mod nearest;
 pub mod poles;

@@ -20,7 +20,7 @@ use crate::linalg::{LinalgError, arnoldi, c64};
 
 /// Eigenvalues accepted when their residual, carried to `s`, is below this fraction of `|s|`:
 /// far below the reduction's tolerances (1e-6 relative, 1e-3 of a decay rate).
-const TOLERANCE: f64 = 1e-13;
+pub const TOLERANCE: f64 = 1e-13;
 
 /// Rotor energy fraction above which a pole is a rotor pole (near 1 for a rotor pole, of the
 /// order of the loss factor for an internal one).

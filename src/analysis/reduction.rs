@@ -65,6 +65,8 @@ pub struct Reduction {
     pub checked_speeds: Vec<f64>,
     /// Largest relative distance between a checked pole and its counterpart.
     pub max_relative_error: f64,
+    /// Whether the full model was held sparse (`analysis::large`).
+    pub sparse: bool,
 }
 
 /// The reduced model for a sweep over `speeds` with poles wanted below `bound`, or `None` when
@@ -76,27 +78,10 @@ pub fn reduce_for_sweep(
     speeds: &[f64],
     bound: f64,
 ) -> Result<Option<(DampedModel, Reduction)>, AnalysisError> {
-    let checked_speed = speeds
-        .iter()
-        .cloned()
-        .fold(0.0, |a: f64, b| if b.abs() > a.abs() { b } else { a });
     if speeds.is_empty() {
         return Ok(None);
     }
-    // The basis is the rotor's at rest with static corrections where the supports act; when
-    // the supports change with the speed, one speed's check does not vouch for the others
-    // (a tabulated rotor's poles drifted to 4e-6 in the middle of a sweep checked to 5e-7 at
-    // its top): the lowest and the middle speed are checked too.
-    let mut checked = vec![checked_speed];
-    if system.speed_dependent() {
-        let mut sorted = speeds.to_vec();
-        sorted.sort_by(f64::total_cmp);
-        for w in [sorted[0], sorted[sorted.len() / 2]] {
-            if !checked.contains(&w) {
-                checked.push(w);
-            }
-        }
-    }
+    let checked = checked_speeds(system, speeds);
     Ok(reduce_checked(
         system,
         damping,
@@ -107,6 +92,29 @@ pub fn reduce_for_sweep(
         Criterion::Relative(TOLERANCE),
     )?
     .map(|r| (r.model, r.info)))
+}
+
+/// The speeds a sweep's reduction is checked at: the fastest (where the gyroscopic coupling of
+/// the neglected modes is largest) first. The basis is the rotor's at rest with static
+/// corrections where the supports act; when the supports change with the speed, one speed's
+/// check does not vouch for the others (a tabulated rotor's poles drifted to 4e-6 in the middle
+/// of a sweep checked to 5e-7 at its top): the lowest and the middle speed are checked too.
+pub fn checked_speeds(system: &RotorSystem, speeds: &[f64]) -> Vec<f64> {
+    let top = speeds
+        .iter()
+        .cloned()
+        .fold(0.0, |a: f64, b| if b.abs() > a.abs() { b } else { a });
+    let mut checked = vec![top];
+    if system.speed_dependent() && !speeds.is_empty() {
+        let mut sorted = speeds.to_vec();
+        sorted.sort_by(f64::total_cmp);
+        for w in [sorted[0], sorted[sorted.len() / 2]] {
+            if !checked.contains(&w) {
+                checked.push(w);
+            }
+        }
+    }
+    checked
 }
 
 /// A checked reduction: the rotor in the coordinates of its basis (`q = phi eta`), its damped
@@ -221,6 +229,7 @@ pub fn reduce_checked(
                 checked_speed,
                 checked_speeds: checked.to_vec(),
                 max_relative_error: error,
+                sparse: false,
             };
             return Ok(Some(Reduced {
                 system: reduced,
@@ -256,7 +265,7 @@ pub fn band_error(
 
 /// Largest distance from a pole of either set in the box `|Re s|, |Im s| <= bound` to the
 /// nearest of the other set, as `criterion` measures it.
-fn both_ways(exact: &[c64], approx: &[c64], bound: f64, criterion: Criterion) -> f64 {
+pub(super) fn both_ways(exact: &[c64], approx: &[c64], bound: f64, criterion: Criterion) -> f64 {
     let inside = |v: &[c64]| -> Vec<c64> {
         v.iter()
             .cloned()
@@ -269,16 +278,12 @@ fn both_ways(exact: &[c64], approx: &[c64], bound: f64, criterion: Criterion) ->
 /// `loads` with the coordinates where supports and nonrotating dampers act, sorted, once each:
 /// where a reduction's basis carries the static responses to unit loads.
 pub fn with_supports(system: &RotorSystem, loads: &[usize]) -> Vec<usize> {
-    let n = system.n();
     let mut loads = loads.to_vec();
     for p in &system.supports {
         loads.extend(p.at.weights().iter().map(|&(d, _)| d));
     }
-    for d in 0..n {
-        let at = |a: &crate::linalg::RMat| (0..n).any(|j| a[(d, j)] != 0.0);
-        if at(&system.damping_nonrotating) || at(&system.hysteretic_nonrotating) {
-            loads.push(d);
-        }
+    for a in [&system.damping_nonrotating, &system.hysteretic_nonrotating] {
+        loads.extend(a.entries().filter(|e| e.2 != 0.0).map(|e| e.0));
     }
     loads.sort_unstable();
     loads.dedup();
@@ -311,7 +316,7 @@ fn distance(from: &[c64], to: &[c64], criterion: Criterion) -> f64 {
 /// also lets the full model's be found by shift-invert Arnoldi: its internal poles include
 /// ill-conditioned ones only the dense solve places to 1e-7 (a 1616-state model's rotor poles
 /// in 0.4 s instead of 5.8, `tests/nearest.rs`).
-fn compared_at(model: &DampedModel, speed: f64) -> Result<Vec<c64>, LinalgError> {
+pub(super) fn compared_at(model: &DampedModel, speed: f64) -> Result<Vec<c64>, LinalgError> {
     match &model.kind {
         ModelKind::Linear(m) if m.p() > 0 => {
             let rotor = super::poles::poles_at(model, speed)?.rotor;

@@ -180,9 +180,32 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
             max_frequency,
             modes,
             reduce,
+            sparse,
+            max_states,
         } => {
-            let (system, damped) = build(model)?;
             let speeds = speeds.as_slice();
+            let system = assemble(model)?;
+            if *sparse {
+                let keep = campbell::Keep {
+                    below: *max_frequency,
+                    lowest: None,
+                };
+                let r = campbell::campbell_large(
+                    &system,
+                    &model.damping,
+                    speeds,
+                    keep,
+                    *max_states,
+                    control,
+                );
+                return match r {
+                    Ok(r) => Ok(Outcome::Campbell(r)),
+                    Err(AnalysisError::Damping(e)) => Err(damping_error(e, &model.rotor)),
+                    Err(e) => Err(e.into()),
+                };
+            }
+            let damped = DampedModel::build(&system, &model.damping)
+                .map_err(|e| damping_error(e, &model.rotor))?;
             let bound = match modes {
                 Some(n) => campbell::lowest_bound(&damped, speeds[0], *n)?.min(*max_frequency),
                 None => *max_frequency,

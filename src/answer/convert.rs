@@ -194,6 +194,10 @@ pub fn reduction(d: &crate::analysis::reduction::Reduction) -> api::ReductionInf
         checked_speed: d.checked_speed,
         checked_speeds: d.checked_speeds.clone(),
         max_relative_error: d.max_relative_error,
+        full_model: match d.sparse {
+            true => api::Storage::Sparse,
+            false => api::Storage::Dense,
+        },
     }
 }
 

@@ -16,7 +16,7 @@
 use super::Bases;
 use super::state::SecondOrder;
 use crate::fem::modal::ModalBasis;
-use crate::linalg::{self, CMat, RMat};
+use crate::linalg::{self, CMat, RMat, Sparse};
 use crate::system::Realized;
 
 /// `C_eq` for one hysteretic matrix `K''` over modes `phi` (columns, `phi^H M phi = I`).
@@ -42,7 +42,7 @@ pub fn equivalent(k_loss: &CMat, mass: &CMat, omega: &[f64], phi: &CMat) -> CMat
 }
 
 /// `C_eq` for a real `K''` over a real basis (the single layout's arithmetic).
-pub fn equivalent_matrix(k_loss: &RMat, mass: &RMat, basis: &ModalBasis) -> RMat {
+pub fn equivalent_matrix(k_loss: &Sparse, mass: &Sparse, basis: &ModalBasis) -> RMat {
     let modal = basis.project(k_loss);
     let p = basis.participation(mass);
     let n = mass.nrows();
@@ -62,13 +62,13 @@ pub fn equivalent_matrix(k_loss: &RMat, mass: &RMat, basis: &ModalBasis) -> RMat
 }
 
 /// `C_eq,r` and `C_eq,n` of a realization, in its layout.
-pub fn matrices(r: &Realized, rotor_loss: &RMat, bases: &Bases) -> (CMat, CMat) {
+pub fn matrices(r: &Realized, rotor_loss: &Sparse, bases: &Bases) -> (CMat, CMat) {
     match &bases.xy {
         None => {
             let c_r = equivalent_matrix(rotor_loss, &bases.axis_mass, &bases.axis);
             let c_n = equivalent(
                 &r.loss_nonrotating,
-                &linalg::to_complex(&bases.axis_mass),
+                &linalg::to_complex(&bases.axis_mass.to_dense()),
                 &bases.axis.omega,
                 &linalg::to_complex(&bases.axis.phi),
             );
@@ -82,7 +82,7 @@ pub fn matrices(r: &Realized, rotor_loss: &RMat, bases: &Bases) -> (CMat, CMat) 
 }
 
 /// The rotor with `C_n + C_eq,n` and `C_r + C_eq,r`.
-pub fn second_order(r: &Realized, rotor_loss: &RMat, bases: &Bases) -> SecondOrder {
+pub fn second_order(r: &Realized, rotor_loss: &Sparse, bases: &Bases) -> SecondOrder {
     let (c_r, c_n) = matrices(r, rotor_loss, bases);
     SecondOrder::with_damping(
         r,

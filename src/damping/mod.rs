@@ -17,13 +17,14 @@
 pub mod equivalent;
 pub mod harmonic;
 pub mod hysteretic;
+pub mod large;
 pub mod nonviscous;
 pub mod report;
 pub mod schedule;
 pub mod state;
 
 use crate::fem::modal::{HermitianBasis, ModalBasis, ModalError};
-use crate::linalg::{CMat, LinalgError, RMat};
+use crate::linalg::{CMat, LinalgError, RMat, Sparse};
 use crate::model::damping::DampingModel;
 use crate::system::{Layout, Realized, RotorSystem};
 pub use schedule::Schedule;
@@ -60,7 +61,7 @@ pub struct Bases {
     /// The rotor's axisymmetric modes (its rotating dampers; every damper in the coordinates
     /// `r`), real, and the mass they are normalised with.
     pub axis: ModalBasis,
-    pub axis_mass: RMat,
+    pub axis_mass: Sparse,
     /// Doubled coordinates: the real x/y modes (the nonrotating dampers) and their mass.
     pub xy: Option<(HermitianBasis, CMat)>,
 }
@@ -70,6 +71,8 @@ pub struct Bases {
 pub enum DampingError {
     Modal(ModalError),
     Linalg(LinalgError),
+    /// A model that cannot be solved the way it was asked for (the message says why).
+    Unsolvable(String),
 }
 
 impl std::fmt::Display for DampingError {
@@ -77,6 +80,7 @@ impl std::fmt::Display for DampingError {
         match self {
             Self::Modal(e) => write!(f, "{e}"),
             Self::Linalg(e) => write!(f, "{e}"),
+            Self::Unsolvable(m) => write!(f, "{m}"),
         }
     }
 }
@@ -106,7 +110,7 @@ impl Bases {
             system.mass.clone()
         } else {
             let (_, m) = Realized::undamped(system, Layout::Single);
-            RMat::from_fn(m.nrows(), m.ncols(), |i, j| m[(i, j)].re)
+            Sparse::from_dense(&RMat::from_fn(m.nrows(), m.ncols(), |i, j| m[(i, j)].re))
         };
         Bases {
             axis: modes.map_or_else(|| all.clone(), |k| all.truncated(k)),
@@ -130,7 +134,7 @@ impl Bases {
 
     /// The dampers' tuning and loss stiffness, nonrotating on `omega_n` and rotating on the
     /// axisymmetric modes, for a realization's loss: `(mode, w0, loss, rotating)`.
-    pub fn dampers(&self, r: &Realized, rotor_loss: &RMat) -> Vec<(usize, f64, f64, bool)> {
+    pub fn dampers(&self, r: &Realized, rotor_loss: &Sparse) -> Vec<(usize, f64, f64, bool)> {
         let mut out = vec![];
         let loss_r = self.axis.project(rotor_loss);
         let (omega_n, phi_n) = match &self.xy {

@@ -17,7 +17,7 @@
 use super::Bases;
 use super::state::{Branches, SecondOrder, StateModel};
 use crate::fem::modal::ModalBasis;
-use crate::linalg::{self, CMat, LinalgError, RMat, c64};
+use crate::linalg::{self, CMat, LinalgError, RMat, Sparse, c64};
 use crate::model::damping::NonviscousSpec;
 pub use crate::model::damping::{BranchSet, BranchSetError, collocation_gammas};
 use crate::system::{Layout, Realized, RotorSystem};
@@ -32,7 +32,7 @@ use crate::system::{Layout, Realized, RotorSystem};
 /// modes, on `r` (spin +1) and, doubled, on `conj r` too (spin -1).
 pub fn branches(
     realized: &[&Realized],
-    rotor_loss: &RMat,
+    rotor_loss: &Sparse,
     bases: &Bases,
     spec: &NonviscousSpec,
 ) -> Vec<Branches> {

@@ -11,7 +11,7 @@
 use super::conical::{self, Cone};
 use super::element::{self, Mat4, Section};
 use super::guyan;
-use crate::linalg::{LinalgError, RMat};
+use crate::linalg::{LinalgError, Sparse};
 use crate::model::api::GuyanKeep;
 use crate::model::rotor::{BeamRotor, Coupling, Element, MatrixRotor, Rotor, ShaftElement};
 use crate::system::{Dof, DofKind, PlacedSupport, Placement, RotorSystem};
@@ -80,7 +80,7 @@ fn cone(e: &ShaftElement) -> Cone {
 /// Adds an element on the degrees of freedom from `at` on: its stiffness and geometric
 /// stiffness are rotating, its loss `eta K_e` rotating hysteretic, its torque circulatory, its
 /// proportional damping in the frame it names.
-fn add_element(s: &mut RotorSystem, at: usize, e: &ShaftElement) {
+fn add_element(s: &mut Parts, at: usize, e: &ShaftElement) {
     let (k, m, g, p) = element_matrices(e);
     add(&mut s.stiffness_rotating, at, &k, 1.0);
     add(&mut s.hysteretic_rotating, at, &k, e.loss_factor);
@@ -111,10 +111,10 @@ fn add_element(s: &mut RotorSystem, at: usize, e: &ShaftElement) {
 /// A coupling from the degrees of freedom `at` (`r`, `phi` of its left node) to `at + 3`: a
 /// spring and a rotating damper between the translations and between the rotations, each
 /// half's mass and inertias on its node.
-fn add_coupling(s: &mut RotorSystem, at: usize, c: &Coupling) {
+fn add_coupling(s: &mut Parts, at: usize, c: &Coupling) {
     let (kt, kr) = (c.translational_stiffness, c.angular_stiffness);
     let (ct, cr) = (c.translational_damping, c.angular_damping);
-    let between = |m: &mut RMat, d: usize, a: f64| spring(m, at + d, Some(at + 2 + d), a);
+    let between = |m: &mut Triplets, d: usize, a: f64| spring(m, at + d, Some(at + 2 + d), a);
     between(&mut s.stiffness_rotating, 0, kt);
     between(&mut s.stiffness_rotating, 1, kr);
     between(&mut s.hysteretic_rotating, 0, c.loss_factor * kt);
@@ -123,9 +123,9 @@ fn add_coupling(s: &mut RotorSystem, at: usize, c: &Coupling) {
     between(&mut s.damping_rotating, 1, cr);
     for side in 0..2 {
         let (r, phi) = (at + 2 * side, at + 2 * side + 1);
-        s.mass[(r, r)] += c.mass[side];
-        s.mass[(phi, phi)] += c.transverse_inertia[side];
-        s.gyroscopic[(phi, phi)] += c.polar_inertia[side];
+        s.mass.push((r, r, c.mass[side]));
+        s.mass.push((phi, phi, c.transverse_inertia[side]));
+        s.gyroscopic.push((phi, phi, c.polar_inertia[side]));
     }
 }
 
@@ -147,38 +147,67 @@ pub fn translation_dof(rotor: &BeamRotor, node: usize) -> usize {
     }
 }
 
+/// Entries of one matrix as assembled, `(row, column, value)`, summed in order when compressed.
+type Triplets = Vec<(usize, usize, f64)>;
+
+/// A rotor's matrices while they are assembled.
+#[derive(Default)]
+struct Parts {
+    mass: Triplets,
+    gyroscopic: Triplets,
+    stiffness_rotating: Triplets,
+    stiffness_nonrotating: Triplets,
+    damping_rotating: Triplets,
+    damping_nonrotating: Triplets,
+    hysteretic_rotating: Triplets,
+    hysteretic_nonrotating: Triplets,
+    circulatory: Triplets,
+}
+
+impl Parts {
+    /// The `n x n` system on the beam rotor's degrees of freedom (no supports placed yet).
+    fn finish(self, rotor: &BeamRotor, n: usize) -> RotorSystem {
+        let shaft = rotor.shaft_nodes();
+        let z = |t: Triplets| Sparse::from_triplets(n, n, &t);
+        RotorSystem {
+            mass: z(self.mass),
+            gyroscopic: z(self.gyroscopic),
+            stiffness_rotating: z(self.stiffness_rotating),
+            stiffness_nonrotating: z(self.stiffness_nonrotating),
+            damping_rotating: z(self.damping_rotating),
+            damping_nonrotating: z(self.damping_nonrotating),
+            hysteretic_rotating: z(self.hysteretic_rotating),
+            hysteretic_nonrotating: z(self.hysteretic_nonrotating),
+            circulatory: z(self.circulatory),
+            dofs: (0..n)
+                .map(|i| match i {
+                    i if i >= 2 * shaft => Dof {
+                        node: shaft + (i - 2 * shaft),
+                        kind: DofKind::Translation,
+                    },
+                    i if i % 2 == 0 => Dof {
+                        node: i / 2,
+                        kind: DofKind::Translation,
+                    },
+                    i => Dof {
+                        node: i / 2,
+                        kind: DofKind::Rotation,
+                    },
+                })
+                .collect(),
+            supports: vec![],
+        }
+    }
+}
+
 /// The shaft and disks on `n` degrees of freedom (`n` past the shaft's: nodes off it).
 fn structure(rotor: &BeamRotor, n: usize) -> RotorSystem {
-    let shaft = rotor.shaft_nodes();
-    let z = || RMat::zeros(n, n);
-    let mut s = RotorSystem {
-        mass: z(),
-        gyroscopic: z(),
-        stiffness_rotating: z(),
-        stiffness_nonrotating: z(),
-        damping_rotating: z(),
-        damping_nonrotating: z(),
-        hysteretic_rotating: z(),
-        hysteretic_nonrotating: z(),
-        circulatory: z(),
-        dofs: (0..n)
-            .map(|i| match i {
-                i if i >= 2 * shaft => Dof {
-                    node: shaft + (i - 2 * shaft),
-                    kind: DofKind::Translation,
-                },
-                i if i % 2 == 0 => Dof {
-                    node: i / 2,
-                    kind: DofKind::Translation,
-                },
-                i => Dof {
-                    node: i / 2,
-                    kind: DofKind::Rotation,
-                },
-            })
-            .collect(),
-        supports: vec![],
-    };
+    structure_parts(rotor).finish(rotor, n)
+}
+
+/// The shaft's and disks' entries.
+fn structure_parts(rotor: &BeamRotor) -> Parts {
+    let mut s = Parts::default();
     for (e, el) in rotor.elements().iter().enumerate() {
         match el {
             Element::Beam(b) => add_element(&mut s, 2 * e, b),
@@ -190,20 +219,20 @@ fn structure(rotor: &BeamRotor, n: usize) -> RotorSystem {
     }
     for d in rotor.disks() {
         let (r, phi) = (2 * d.node, 2 * d.node + 1);
-        s.mass[(r, r)] += d.mass;
-        s.mass[(phi, phi)] += d.transverse_inertia;
-        s.gyroscopic[(phi, phi)] += d.polar_inertia;
+        s.mass.push((r, r, d.mass));
+        s.mass.push((phi, phi, d.transverse_inertia));
+        s.gyroscopic.push((phi, phi, d.polar_inertia));
     }
     s
 }
 
 /// A real coefficient `a` between translations `r` and `link` (ground if `None`).
-fn spring(target: &mut RMat, r: usize, link: Option<usize>, a: f64) {
-    target[(r, r)] += a;
+fn spring(target: &mut Triplets, r: usize, link: Option<usize>, a: f64) {
+    target.push((r, r, a));
     if let Some(l) = link {
-        target[(l, l)] += a;
-        target[(r, l)] -= a;
-        target[(l, r)] -= a;
+        target.push((l, l, a));
+        target.push((r, l, -a));
+        target.push((l, r, -a));
     }
 }
 
@@ -220,13 +249,13 @@ impl RotorSystem {
 
 /// Assembles (and reduces, if asked) a beam rotor.
 pub fn beam(rotor: &BeamRotor) -> Result<RotorSystem, LinalgError> {
-    let mut s = structure(rotor, rotor.assembled_dofs());
+    let mut s = structure_parts(rotor);
     let at = |node: usize| translation_dof(rotor, node);
     for p in rotor.point_masses() {
         let r = at(p.node);
-        s.mass[(r, r)] += p.mass;
-        s.stiffness_nonrotating[(r, r)] += p.stiffness;
-        s.damping_nonrotating[(r, r)] += p.damping;
+        s.mass.push((r, r, p.mass));
+        s.stiffness_nonrotating.push((r, r, p.stiffness));
+        s.damping_nonrotating.push((r, r, p.damping));
     }
     for sup in rotor.supports() {
         let (r, l) = (at(sup.node), sup.link.map(at));
@@ -239,6 +268,7 @@ pub fn beam(rotor: &BeamRotor) -> Result<RotorSystem, LinalgError> {
             sup.loss_factor * sup.stiffness,
         );
     }
+    let s = s.finish(rotor, rotor.assembled_dofs());
     let mut s = match rotor.guyan() {
         None => s,
         Some(GuyanKeep::Translations) => {
@@ -275,16 +305,17 @@ pub fn beam(rotor: &BeamRotor) -> Result<RotorSystem, LinalgError> {
 /// distinguish rotating parts); degree of freedom `i` is reported as node `i`.
 pub fn matrices(m: &MatrixRotor) -> RotorSystem {
     let n = m.mass.nrows();
+    let s = Sparse::from_dense;
     RotorSystem {
-        mass: m.mass.clone(),
-        gyroscopic: m.gyroscopic.clone(),
-        stiffness_rotating: RMat::zeros(n, n),
-        stiffness_nonrotating: m.stiffness.clone(),
-        damping_rotating: m.damping_rotating.clone(),
-        damping_nonrotating: m.damping_nonrotating.clone(),
-        hysteretic_rotating: m.hysteretic_rotating.clone(),
-        hysteretic_nonrotating: m.hysteretic_nonrotating.clone(),
-        circulatory: RMat::zeros(n, n),
+        mass: s(&m.mass),
+        gyroscopic: s(&m.gyroscopic),
+        stiffness_rotating: Sparse::zeros(n, n),
+        stiffness_nonrotating: s(&m.stiffness),
+        damping_rotating: s(&m.damping_rotating),
+        damping_nonrotating: s(&m.damping_nonrotating),
+        hysteretic_rotating: s(&m.hysteretic_rotating),
+        hysteretic_nonrotating: s(&m.hysteretic_nonrotating),
+        circulatory: Sparse::zeros(n, n),
         dofs: (0..n)
             .map(|i| Dof {
                 node: i,
@@ -305,13 +336,13 @@ pub fn matrices(m: &MatrixRotor) -> RotorSystem {
     }
 }
 
-fn add(target: &mut RMat, at: usize, e: &Mat4, factor: f64) {
+fn add(target: &mut Triplets, at: usize, e: &Mat4, factor: f64) {
     if factor == 0.0 {
         return;
     }
-    for i in 0..4 {
-        for j in 0..4 {
-            target[(at + i, at + j)] += factor * e[i][j];
+    for (i, row) in e.iter().enumerate() {
+        for (j, v) in row.iter().enumerate() {
+            target.push((at + i, at + j, factor * v));
         }
     }
 }

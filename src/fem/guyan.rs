@@ -5,7 +5,7 @@
 //! each damping, gyroscopic, each imaginary stiffness) becomes `T^T X T` with the same `T`.
 //! Exact for the statics, and for massless condensed coordinates.
 
-use crate::linalg::{self, LinalgError, RMat};
+use crate::linalg::{self, LinalgError, RMat, Sparse};
 use crate::system::RotorSystem;
 
 /// Reduces `system` to the degrees of freedom where `keep` is true.
@@ -13,7 +13,7 @@ pub fn reduce(system: &RotorSystem, keep: &[bool]) -> Result<RotorSystem, Linalg
     let n = system.n();
     let kept: Vec<usize> = (0..n).filter(|&i| keep[i]).collect();
     let cond: Vec<usize> = (0..n).filter(|&i| !keep[i]).collect();
-    let k = system.stiffness();
+    let k = system.stiffness().to_dense();
     let kss = RMat::from_fn(cond.len(), cond.len(), |i, j| k[(cond[i], cond[j])]);
     let ksm = RMat::from_fn(cond.len(), kept.len(), |i, j| k[(cond[i], kept[j])]);
     let x = linalg::solve_real_matrix(&kss, &ksm)?;
@@ -26,7 +26,7 @@ pub fn reduce(system: &RotorSystem, keep: &[bool]) -> Result<RotorSystem, Linalg
             t[(i, j)] = -x[(r, j)];
         }
     }
-    let red = |a: &RMat| symmetrise(&(t.transpose() * a * &t));
+    let red = |a: &Sparse| Sparse::from_dense(&symmetrise(&(t.transpose() * a.to_dense() * &t)));
     Ok(RotorSystem {
         mass: red(&system.mass),
         gyroscopic: red(&system.gyroscopic),
@@ -37,7 +37,7 @@ pub fn reduce(system: &RotorSystem, keep: &[bool]) -> Result<RotorSystem, Linalg
         hysteretic_rotating: red(&system.hysteretic_rotating),
         hysteretic_nonrotating: red(&system.hysteretic_nonrotating),
         // Not symmetric: projected as it is.
-        circulatory: t.transpose() * &system.circulatory * &t,
+        circulatory: Sparse::from_dense(&(t.transpose() * system.circulatory.to_dense() * &t)),
         dofs: kept.iter().map(|&i| system.dofs[i]).collect(),
         supports: system
             .supports

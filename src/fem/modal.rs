@@ -4,7 +4,7 @@
 //! back is `Mbar^-1 Phi*^T M = Phi*^T M` (mass-normalised), which is `Phi^-1` when all modes are
 //! kept; so one formula serves the full and the reduced mode sets (paper eq. 7 and after).
 
-use crate::linalg::{self, CMat, LinalgError, RMat, c64};
+use crate::linalg::{self, CMat, LinalgError, RMat, Sparse, c64};
 use crate::system::{Dof, DofKind, Layout, PlacedSupport, Placement, Realized, RotorSystem};
 
 /// Mass-normalised undamped modes of the nonrotating rotor, lowest first.
@@ -46,8 +46,44 @@ impl ModalBasis {
     /// these are the rotor's own axisymmetric modes, the basis of its rotating damping.
     pub fn of(system: &RotorSystem) -> Result<Self, ModalError> {
         let (k, m) = pencil(system);
-        let modes = linalg::symmetric_modes(&k, &m).map_err(ModalError::Linalg)?;
+        let modes =
+            linalg::symmetric_modes(&k.to_dense(), &m.to_dense()).map_err(ModalError::Linalg)?;
         supported(&modes.omega_squared)?;
+        Ok(ModalBasis {
+            omega: modes.omega_squared.iter().map(|w2| w2.sqrt()).collect(),
+            phi: modes.phi,
+        })
+    }
+
+    /// The lowest modes of [`ModalBasis::of`]'s pencil, by shift-invert Lanczos on its sparse
+    /// matrices (`linalg::lanczos`), until `enough(w^2 ascending)` holds: a large rotor's basis
+    /// at a cost linear in its size. Refused as [`ModalBasis::of`] refuses a rotor not held in
+    /// place (`K` not positive definite, or a mode with `w^2` below `1e-11` of the largest
+    /// `K_ii / M_ii`, a lower bound of the highest mode's).
+    pub fn lowest(
+        system: &RotorSystem,
+        enough: impl Fn(&[f64]) -> bool,
+    ) -> Result<Self, ModalError> {
+        let (k, m) = pencil(system);
+        let modes = linalg::lanczos::lowest_modes(&k, &m, enough).map_err(|e| match e {
+            LinalgError::NotPositiveDefinite => ModalError::RigidBody {
+                mode: 1,
+                omega_squared: 0.0,
+            },
+            e => ModalError::Linalg(e),
+        })?;
+        let largest = (0..k.nrows())
+            .map(|i| k.get(i, i) / m.get(i, i))
+            .filter(|r| r.is_finite())
+            .fold(0.0, f64::max);
+        for (i, &w2) in modes.omega_squared.iter().enumerate() {
+            if w2 <= 1e-11 * largest || w2 <= 0.0 {
+                return Err(ModalError::RigidBody {
+                    mode: i + 1,
+                    omega_squared: w2,
+                });
+            }
+        }
         Ok(ModalBasis {
             omega: modes.omega_squared.iter().map(|w2| w2.sqrt()).collect(),
             phi: modes.phi,
@@ -72,8 +108,8 @@ impl ModalBasis {
     }
 
     /// Modal projection of a symmetric matrix: `Phi^T A Phi`.
-    pub fn project(&self, a: &RMat) -> RMat {
-        self.phi.transpose() * a * &self.phi
+    pub fn project(&self, a: &Sparse) -> RMat {
+        a.project(&self.phi)
     }
 
     /// The lowest `count` modes augmented with their static correction, then made modes of the
@@ -132,8 +168,13 @@ impl ModalBasis {
         let kept = self.truncated(count);
         let n = system.n();
         let (k, m) = pencil(system);
-        let m = &m;
-        let couplings: Vec<&RMat> = [
+        let dense = n <= linalg::sparse::DENSE_UP_TO;
+        let m_dense = dense.then(|| m.to_dense());
+        let m_times = |x: &RMat| match &m_dense {
+            Some(d) => d * x,
+            None => m.mul(x),
+        };
+        let couplings: Vec<&Sparse> = [
             &system.gyroscopic,
             &system.damping_rotating,
             &system.damping_nonrotating,
@@ -142,12 +183,12 @@ impl ModalBasis {
             &system.circulatory,
         ]
         .into_iter()
-        .filter(|a| (0..n).any(|j| (0..n).any(|i| a[(i, j)] != 0.0)))
+        .filter(|a| !a.is_zero())
         .collect();
         let coupled = couplings.len() * kept.len();
         let mut f = RMat::zeros(n, coupled + loads.len());
         for (b, a) in couplings.iter().enumerate() {
-            let block = *a * &kept.phi;
+            let block = a.times(&kept.phi);
             for j in 0..kept.len() {
                 for i in 0..n {
                     f[(i, b * kept.len() + j)] = block[(i, j)];
@@ -157,21 +198,24 @@ impl ModalBasis {
         for (j, &d) in loads.iter().enumerate() {
             f[(d, coupled + j)] = 1.0;
         }
-        let x = linalg::solve_real_matrix(&k, &f).map_err(ModalError::Linalg)?;
+        let x = k.solve_symmetric(&f).map_err(ModalError::Linalg)?;
         // K v is tracked beside every basis vector v, never formed as K times v: for a low mode
         // of a stiff shaft that product cancels to eps * w_max^2 / w^2 relative (5e-6 on the
         // unreduced compressor), while K phi = w^2 M phi and K (K^-1 f) = f are exact.
-        let kept_k = m * &kept.phi;
+        let kept_k = m_times(&kept.phi);
         let kept_kphi = RMat::from_fn(n, kept.len(), |i, j| {
             kept.omega[j] * kept.omega[j] * kept_k[(i, j)]
         });
-        let (v, kv) = linalg::m_orthonormal_extend(m, &kept.phi, &kept_kphi, &x, &f);
-        let kv = if formed { &k * &v } else { kv };
+        let (v, kv) = linalg::m_orthonormal_extend(m_times, &kept.phi, &kept_kphi, &x, &f);
+        let kv = if formed { k.times(&v) } else { kv };
         let kr = v.transpose() * &kv;
         let kr = RMat::from_fn(kr.nrows(), kr.ncols(), |i, j| {
             0.5 * (kr[(i, j)] + kr[(j, i)])
         });
-        let mr = v.transpose() * m * &v;
+        let mr = match &m_dense {
+            Some(d) => v.transpose() * d * &v,
+            None => v.transpose() * m.mul(&v),
+        };
         let ritz = linalg::symmetric_modes(&kr, &mr).map_err(ModalError::Linalg)?;
         Ok(ModalBasis {
             omega: ritz
@@ -267,12 +311,15 @@ impl HermitianBasis {
 
 /// `(K, M)` of the rotor's axisymmetric modes: supports in the general form count with the
 /// symmetric parts of their coefficients at rest, averaged over the directions.
-fn pencil(system: &RotorSystem) -> (RMat, RMat) {
+fn pencil(system: &RotorSystem) -> (Sparse, Sparse) {
     if system.supports.is_empty() {
         (system.stiffness(), system.mass.clone())
     } else {
         let (ks, ms) = system.supports_at_rest();
-        (&system.stiffness() + &ks, &system.mass + &ms)
+        (
+            system.stiffness().plus(&ks, 1.0),
+            system.mass.plus(&ms, 1.0),
+        )
     }
 }
 
@@ -297,10 +344,11 @@ impl ModalBasis {
             let (k, _) = system.supports_at_rest();
             self.project(&k)
         });
+        let s = |a: &Sparse| Sparse::from_dense(&self.project(a));
         RotorSystem {
-            mass: self.project(&system.mass),
-            gyroscopic: self.project(&system.gyroscopic),
-            stiffness_rotating: RMat::from_fn(m, m, |i, j| {
+            mass: s(&system.mass),
+            gyroscopic: s(&system.gyroscopic),
+            stiffness_rotating: Sparse::from_dense(&RMat::from_fn(m, m, |i, j| {
                 let total = if i == j {
                     self.omega[i] * self.omega[i]
                 } else {
@@ -308,13 +356,13 @@ impl ModalBasis {
                 };
                 let supports = averaged.as_ref().map_or(0.0, |a| a[(i, j)]);
                 total - supports - nonrotating[(i, j)]
-            }),
-            stiffness_nonrotating: nonrotating,
-            damping_rotating: self.project(&system.damping_rotating),
-            damping_nonrotating: self.project(&system.damping_nonrotating),
-            hysteretic_rotating: self.project(&system.hysteretic_rotating),
-            hysteretic_nonrotating: self.project(&system.hysteretic_nonrotating),
-            circulatory: self.project(&system.circulatory),
+            })),
+            stiffness_nonrotating: Sparse::from_dense(&nonrotating),
+            damping_rotating: s(&system.damping_rotating),
+            damping_nonrotating: s(&system.damping_nonrotating),
+            hysteretic_rotating: s(&system.hysteretic_rotating),
+            hysteretic_nonrotating: s(&system.hysteretic_nonrotating),
+            circulatory: s(&system.circulatory),
             dofs: (0..self.len())
                 .map(|node| Dof {
                     node,
@@ -341,7 +389,7 @@ impl ModalBasis {
     }
 
     /// `M Phi`: its columns map physical coordinates to modal ones (`eta = (M Phi)^T q`).
-    pub fn participation(&self, mass: &RMat) -> RMat {
-        mass * &self.phi
+    pub fn participation(&self, mass: &Sparse) -> RMat {
+        mass.times(&self.phi)
     }
 }

@@ -15,8 +15,15 @@ const DEPENDENT: f64 = 1e-8;
 
 /// `V` extended by the columns of `x` (see the module docs), with `K V` extended by `kx`
 /// alike.
-pub fn m_orthonormal_extend(m: &RMat, v: &RMat, kv: &RMat, x: &RMat, kx: &RMat) -> (RMat, RMat) {
-    let n = m.nrows();
+/// `m` multiplies by the mass matrix.
+pub fn m_orthonormal_extend(
+    m: impl Fn(&RMat) -> RMat,
+    v: &RMat,
+    kv: &RMat,
+    x: &RMat,
+    kx: &RMat,
+) -> (RMat, RMat) {
+    let n = x.nrows();
     let cap = v.ncols() + x.ncols();
     let mut basis = RMat::zeros(n, cap);
     let mut k_basis = RMat::zeros(n, cap);
@@ -24,7 +31,7 @@ pub fn m_orthonormal_extend(m: &RMat, v: &RMat, kv: &RMat, x: &RMat, kx: &RMat) 
     k_basis.as_mut().subcols_mut(0, v.ncols()).copy_from(kv);
     let mut r = v.ncols();
     let m_norm = |c: &RMat| -> f64 {
-        let mc = m * c;
+        let mc = m(c);
         (0..n)
             .map(|i| c[(i, 0)] * mc[(i, 0)])
             .sum::<f64>()
@@ -40,7 +47,7 @@ pub fn m_orthonormal_extend(m: &RMat, v: &RMat, kv: &RMat, x: &RMat, kx: &RMat) 
         }
         for _twice in 0..2 {
             let b = basis.as_ref().subcols(0, r);
-            let coef = b.transpose() * (m * &c);
+            let coef = b.transpose() * m(&c);
             c -= b * &coef;
             kc -= k_basis.as_ref().subcols(0, r) * &coef;
         }
@@ -82,7 +89,7 @@ mod tests {
             _ => (i == 1) as u8 as f64,
         });
         let kx = &k * &x;
-        let (b, kb) = m_orthonormal_extend(&m, &v, &kv, &x, &kx);
+        let (b, kb) = m_orthonormal_extend(|c: &RMat| &m * c, &v, &kv, &x, &kx);
         assert_eq!(b.ncols(), 3);
         let g = b.transpose() * &m * &b;
         for i in 0..3 {

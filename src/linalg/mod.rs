@@ -11,8 +11,11 @@
 
 pub mod arnoldi;
 mod gram;
+pub mod lanczos;
+pub mod sparse;
 
 pub use gram::m_orthonormal_extend;
+pub use sparse::Sparse;
 
 use faer::linalg::solvers::Solve;
 use faer::{Par, Side};

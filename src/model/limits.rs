@@ -22,6 +22,13 @@
 pub struct Limits {
     /// Most complex degrees of freedom of the assembled rotor, before reduction.
     pub max_dofs: usize,
+    /// Most complex degrees of freedom of a rotor whose analysis holds it sparse (a bounded
+    /// Campbell diagram of a large rotor, `analysis::large`): a bound on what is parsed before
+    /// the memory estimate, which is what limits such a model.
+    pub max_sparse_dofs: usize,
+    /// The setting `max_dofs` came from, for messages: `WHIRL_MAX_DOFS`, or
+    /// `WHIRL_MAX_SPARSE_DOFS` where a sweep was parsed for the sparse path.
+    pub dofs_setting: &'static str,
     /// Largest first-order eigenproblem, internal coordinates included.
     pub max_states: usize,
     /// Most spin speeds in a sweep.
@@ -40,6 +47,8 @@ impl Default for Limits {
     fn default() -> Self {
         Limits {
             max_dofs: 1000,
+            max_sparse_dofs: 200_000,
+            dofs_setting: "WHIRL_MAX_DOFS",
             max_states: 2000,
             max_speeds: 2000,
             max_samples: 2_000_000,
@@ -48,6 +57,29 @@ impl Default for Limits {
             threads: 2,
         }
     }
+}
+
+/// Coordinates `N` of a full second-order model (`n`, or `2 n` doubled) above which a bounded
+/// sweep's reduction holds it sparse (`analysis::large`); below, the dense path is as fast.
+pub const SPARSE_FROM: usize = 600;
+
+/// Most vectors of the Arnoldi space of the sparse path's check (`analysis::large`): about
+/// twice the poles in its disc.
+pub const SPARSE_ARNOLDI: usize = 240;
+
+/// Largest reduced model of the sparse path (states; refused above, `analysis::large`): what
+/// its dense sweep is estimated at.
+pub const SPARSE_REDUCED_STATES: usize = 480;
+
+/// Heap per coordinate `N` of the sparse path, bytes, besides its reduced model: the Arnoldi
+/// space (`2 N` complex entries per vector, [`SPARSE_ARNOLDI`] vectors), the Lanczos and static
+/// correction bases (real, `n` entries: `N`, or `N / 2` doubled; at most
+/// [`SPARSE_REDUCED_STATES`] / 2 vectors, a quarter of that doubled; six copies while the basis
+/// is formed), the sparse matrices and their factors (a few hundred bytes per coordinate).
+pub fn sparse_bytes_per_coordinate(doubled: bool) -> u64 {
+    let copies = if doubled { 2 } else { 1 };
+    let vectors = (SPARSE_REDUCED_STATES / (2 * copies)) as u64;
+    2 * 16 * SPARSE_ARNOLDI as u64 + 6 * 8 * vectors / copies as u64 + 2048
 }
 
 /// JSON bytes per number in an answer (a full-precision double and its separator).

@@ -248,8 +248,8 @@ impl BeamRotor {
                         format!("rotor.shaft[{i}].elements"),
                         format!(
                             "must be between 1 and {max_elements} (got {n}): each element adds 2 \
-                             degrees of freedom and the limit is {} (WHIRL_MAX_DOFS)",
-                            limits.max_dofs
+                             degrees of freedom and the limit is {} ({})",
+                            limits.max_dofs, limits.dofs_setting
                         ),
                     );
                     None
@@ -257,16 +257,19 @@ impl BeamRotor {
             })
             .collect();
         let element_count: u64 = counts.iter().flatten().sum();
-        let too_many = 2 * (element_count + 1) > limits.max_dofs as u64;
+        // A total of the segments within the limit only: with one refused above it would
+        // count the others alone (1600 elements reported as 640).
+        let too_many =
+            counts.iter().all(Option::is_some) && 2 * (element_count + 1) > limits.max_dofs as u64;
         if too_many {
             bad.push(
                 "rotor.shaft",
                 format!(
-                    "{} elements give {} degrees of freedom, more than the limit of {} \
-                     (WHIRL_MAX_DOFS)",
+                    "{} elements give {} degrees of freedom, more than the limit of {} ({})",
                     element_count,
                     2 * (element_count + 1),
-                    limits.max_dofs
+                    limits.max_dofs,
+                    limits.dofs_setting
                 ),
             );
         }
@@ -329,10 +332,11 @@ impl BeamRotor {
                 "rotor.point_masses",
                 format!(
                     "{} nodes off the shaft give {} degrees of freedom, more than the limit of \
-                     {} (WHIRL_MAX_DOFS)",
+                     {} ({})",
                     off_shaft,
                     2 * nodes + off_shaft,
-                    limits.max_dofs
+                    limits.max_dofs,
+                    limits.dofs_setting
                 ),
             );
             nodes_known = false;
@@ -448,8 +452,8 @@ impl MatrixRotor {
             bad.push(
                 "rotor.mass",
                 format!(
-                    "{n} degrees of freedom, more than the limit of {} (WHIRL_MAX_DOFS)",
-                    limits.max_dofs
+                    "{n} degrees of freedom, more than the limit of {} ({})",
+                    limits.max_dofs, limits.dofs_setting
                 ),
             );
             return Err(bad);

@@ -17,6 +17,7 @@ pub struct Config {
     pub max_body_bytes: usize,
     pub max_speeds: usize,
     pub max_dofs: usize,
+    pub max_sparse_dofs: usize,
     pub max_states: usize,
     pub max_samples: usize,
     pub max_steps: usize,
@@ -101,7 +102,12 @@ pub const SETTINGS: &[Setting] = &[
     Setting {
         var: "WHIRL_MAX_DOFS",
         default: "1000",
-        meaning: "most complex degrees of freedom of an assembled rotor (before reduction)",
+        meaning: "most complex degrees of freedom of an assembled rotor (before reduction) whose analysis holds it dense",
+    },
+    Setting {
+        var: "WHIRL_MAX_SPARSE_DOFS",
+        default: "200000",
+        meaning: "most complex degrees of freedom of a rotor held sparse: a bounded Campbell diagram (`max_frequency`, viscous or hysteretic, no Guyan reduction) of a beam rotor past 600 coordinates; the memory budget bounds it too (about 11 kB per coordinate)",
     },
     Setting {
         var: "WHIRL_MAX_STATES",
@@ -246,6 +252,7 @@ impl Default for Config {
             max_body_bytes: 8 * 1024 * 1024,
             max_speeds: 2000,
             max_dofs: 1000,
+            max_sparse_dofs: Limits::default().max_sparse_dofs,
             max_states: 2000,
             max_samples: 2_000_000,
             max_steps: 500_000,
@@ -335,6 +342,8 @@ impl Config {
     pub fn limits(&self) -> Limits {
         Limits {
             max_dofs: self.max_dofs,
+            max_sparse_dofs: self.max_sparse_dofs,
+            dofs_setting: Limits::default().dofs_setting,
             max_states: self.max_states,
             max_speeds: self.max_speeds,
             max_samples: self.max_samples,
@@ -453,6 +462,7 @@ impl Config {
             max_body_bytes: num(&get, "WHIRL_MAX_BODY_BYTES", d.max_body_bytes, 1024)?,
             max_speeds: num(&get, "WHIRL_MAX_SPEEDS", d.max_speeds, 2)?,
             max_dofs: num(&get, "WHIRL_MAX_DOFS", d.max_dofs, 2)?,
+            max_sparse_dofs: num(&get, "WHIRL_MAX_SPARSE_DOFS", d.max_sparse_dofs, 2)?,
             max_states: num(&get, "WHIRL_MAX_STATES", d.max_states, 2)?,
             max_samples: num(&get, "WHIRL_MAX_SAMPLES", d.max_samples, 2)?,
             max_steps: num(&get, "WHIRL_MAX_STEPS", d.max_steps, 10)?,

@@ -21,7 +21,7 @@
 
 pub mod realize;
 
-use crate::linalg::RMat;
+use crate::linalg::Sparse;
 use crate::model::rotor::Jeffcott;
 use crate::model::supports::GeneralSupport;
 
@@ -45,24 +45,25 @@ pub struct Dof {
     pub kind: DofKind,
 }
 
-/// Rotor matrices in complex coordinates (see the module docs).
+/// Rotor matrices in complex coordinates (see the module docs), sparse: a beam's couple a node
+/// with its neighbours only.
 #[derive(Debug, Clone)]
 pub struct RotorSystem {
-    pub mass: RMat,
-    pub gyroscopic: RMat,
+    pub mass: Sparse,
+    pub gyroscopic: Sparse,
     /// Real stiffness of the rotating parts (shaft).
-    pub stiffness_rotating: RMat,
+    pub stiffness_rotating: Sparse,
     /// Real stiffness of the nonrotating parts (supports).
-    pub stiffness_nonrotating: RMat,
-    pub damping_rotating: RMat,
-    pub damping_nonrotating: RMat,
+    pub stiffness_nonrotating: Sparse,
+    pub damping_rotating: Sparse,
+    pub damping_nonrotating: Sparse,
     /// Imaginary (hysteretic) stiffness `K''_r` of the rotating parts.
-    pub hysteretic_rotating: RMat,
+    pub hysteretic_rotating: Sparse,
     /// Imaginary (hysteretic) stiffness `K''_n` of the nonrotating parts.
-    pub hysteretic_nonrotating: RMat,
+    pub hysteretic_nonrotating: Sparse,
     /// Circulatory stiffness `S` (not symmetric): the stiffness is `K + i S` whatever the
     /// frequency's sign (a shaft's torque, `fem::conical`).
-    pub circulatory: RMat,
+    pub circulatory: Sparse,
     pub dofs: Vec<Dof>,
     /// Supports in the general form, each on the degree of freedom of its translation.
     pub supports: Vec<PlacedSupport>,
@@ -106,7 +107,7 @@ impl Placement {
 impl RotorSystem {
     /// The Jeffcott rotor: one translation, the shaft's stiffness and loss are rotating.
     pub fn jeffcott(j: &Jeffcott) -> Self {
-        let one = |v: f64| RMat::from_fn(1, 1, |_, _| v);
+        let one = |v: f64| Sparse::from_triplets(1, 1, &[(0, 0, v)]);
         RotorSystem {
             mass: one(j.mass()),
             gyroscopic: one(0.0),
@@ -131,8 +132,9 @@ impl RotorSystem {
     }
 
     /// Total real stiffness `K` (without the general supports).
-    pub fn stiffness(&self) -> RMat {
-        &self.stiffness_rotating + &self.stiffness_nonrotating
+    pub fn stiffness(&self) -> Sparse {
+        self.stiffness_rotating
+            .plus(&self.stiffness_nonrotating, 1.0)
     }
 
     /// The coordinates the rotor is solved in.
@@ -151,21 +153,24 @@ impl RotorSystem {
 
     /// The supports' stiffness and mass at rest, symmetric parts averaged over the directions,
     /// as real `n x n` matrices: what the axisymmetric modes of the rotor see of them.
-    pub fn supports_at_rest(&self) -> (RMat, RMat) {
+    pub fn supports_at_rest(&self) -> (Sparse, Sparse) {
         let n = self.n();
-        let (mut k, mut m) = (RMat::zeros(n, n), RMat::zeros(n, n));
+        let (mut k, mut m) = (vec![], vec![]);
         for p in &self.supports {
             let c = p.support.at_rest();
             let (kk, mm) = (0.5 * (c.k.xx + c.k.yy), 0.5 * (c.m.xx + c.m.yy));
             let w = p.at.weights();
             for &(i, a) in &w {
                 for &(j, b) in &w {
-                    k[(i, j)] += kk * a * b;
-                    m[(i, j)] += mm * a * b;
+                    k.push((i, j, kk * a * b));
+                    m.push((i, j, mm * a * b));
                 }
             }
         }
-        (k, m)
+        (
+            Sparse::from_triplets(n, n, &k),
+            Sparse::from_triplets(n, n, &m),
+        )
     }
 
     /// The speeds at which a support's table has a point (sorted, deduplicated).

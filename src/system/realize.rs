@@ -12,7 +12,7 @@
 //! supports' `loss_factor` times the symmetric part of their stiffness.
 
 use super::RotorSystem;
-use crate::linalg::{CMat, RMat, c64};
+use crate::linalg::{CMat, Sparse, c64};
 use crate::model::supports::{Coefficients, Matrix2};
 
 /// The coordinates a rotor is solved in.
@@ -43,26 +43,27 @@ pub struct Realized {
 }
 
 /// A real `n x n` matrix on the diagonal block(s) of an `N x N` complex one.
-fn blocks(a: &RMat, layout: Layout) -> CMat {
+fn blocks(a: &Sparse, layout: Layout) -> CMat {
     let n = a.nrows();
-    match layout {
-        Layout::Single => CMat::from_fn(n, n, |i, j| c64::new(a[(i, j)], 0.0)),
-        Layout::Doubled => CMat::from_fn(2 * n, 2 * n, |i, j| {
-            if (i < n) == (j < n) {
-                c64::new(a[(i % n, j % n)], 0.0)
-            } else {
-                c64::new(0.0, 0.0)
-            }
-        }),
+    let size = match layout {
+        Layout::Single => n,
+        Layout::Doubled => 2 * n,
+    };
+    let mut out = CMat::zeros(size, size);
+    for (i, j, v) in a.entries() {
+        out[(i, j)] = c64::new(v, 0.0);
+        if layout == Layout::Doubled {
+            out[(n + i, n + j)] = c64::new(v, 0.0);
+        }
     }
+    out
 }
 
 /// Adds `i S` on the `r` block and its conjugate `-i S` on the `conj r` block.
-fn add_circulatory(target: &mut CMat, s: &RMat, layout: Layout) {
+fn add_circulatory(target: &mut CMat, s: &Sparse, layout: Layout) {
     let n = s.nrows();
-    for j in 0..n {
-        for i in 0..n {
-            let a = s[(i, j)];
+    for (i, j, a) in s.entries() {
+        {
             if a != 0.0 {
                 target[(i, j)] += c64::new(0.0, a);
                 if layout == Layout::Doubled {
@@ -208,7 +209,7 @@ mod tests {
     use crate::system::{Dof, DofKind, PlacedSupport, Placement};
 
     fn one_dof(k: Matrix2) -> RotorSystem {
-        let one = |v: f64| RMat::from_fn(1, 1, |_, _| v);
+        let one = |v: f64| Sparse::from_triplets(1, 1, &[(0, 0, v)]);
         RotorSystem {
             mass: one(2.0),
             gyroscopic: one(0.0),

@@ -132,7 +132,10 @@ pub fn rigid_first(rotor: &BeamRotor) -> Result<f64, AnalysisError> {
     }
     let free: Vec<usize> = (0..s.n()).filter(|&i| !held[i]).collect();
     let pick = |a: &RMat| RMat::from_fn(free.len(), free.len(), |i, j| a[(free[i], free[j])]);
-    let modes = linalg::symmetric_modes(&pick(&s.stiffness_rotating), &pick(&s.mass))?;
+    let modes = linalg::symmetric_modes(
+        &pick(&s.stiffness_rotating.to_dense()),
+        &pick(&s.mass.to_dense()),
+    )?;
     Ok(modes
         .omega_squared
         .first()
@@ -166,8 +169,8 @@ impl Springs {
             .collect();
         Springs {
             modes: modes.min(s.n()),
-            k: s.stiffness_rotating,
-            m: s.mass,
+            k: s.stiffness_rotating.to_dense(),
+            m: s.mass.to_dense(),
             dofs,
         }
     }

@@ -269,7 +269,7 @@ pub fn auto_range(
 pub fn stiffness_scale(system: &RotorSystem) -> f64 {
     let k = system.stiffness();
     (0..k.nrows())
-        .map(|i| k[(i, i)].abs())
+        .map(|i| k.get(i, i).abs())
         .fold(0.0, f64::max)
         .max(1e-300)
 }

@@ -120,9 +120,9 @@ pub fn static_deflection(
     held: Held,
 ) -> Result<StaticResult, AnalysisError> {
     let sys = assembly::beam_shaft(rotor);
-    let (k, m, n) = (&sys.stiffness_rotating, &sys.mass, sys.n());
+    let (k, m, n) = (&sys.stiffness_rotating.to_dense(), &sys.mass, sys.n());
     let w: Vec<f64> = (0..n)
-        .map(|i| -gravity * (0..n).step_by(2).map(|j| m[(i, j)]).sum::<f64>())
+        .map(|i| -gravity * (0..n).step_by(2).map(|j| m.get(i, j)).sum::<f64>())
         .collect();
     // Every support with its request index, node and stiffness at the speed asked.
     let speed = match held {

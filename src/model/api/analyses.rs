@@ -281,6 +281,20 @@ pub struct ReductionInfo {
     /// relative to the decay rate, `|s_reduced - s_full| / max(|Re s_full|, 1e-3 |s_full|)`
     /// (at most 1e-3: a forced response near a pole moves by about that fraction).
     pub max_relative_error: f64,
+    /// How the full model was held for the check: `dense` (small rotors), or `sparse` (large
+    /// ones: sparse matrices and factors, the lowest modes by Lanczos, the full model's poles
+    /// by shift-invert Arnoldi; no dense matrix of the rotor's size).
+    #[serde(default)]
+    pub full_model: Storage,
+}
+
+/// How a rotor's full model was held (see [`ReductionInfo::full_model`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Storage {
+    #[default]
+    Dense,
+    Sparse,
 }
 
 /// Answer of `POST /v1/stability`.

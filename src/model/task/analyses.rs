@@ -41,7 +41,34 @@ impl SweepRequest {
 
     /// `POST /v1/campbell`.
     pub fn parse_campbell(&self, limits: &Limits) -> Result<Task, Invalid> {
-        let (model, speeds) = self.parse_sweep(limits)?;
+        // A bounded sweep of the viscous or hysteretic model may hold a large rotor sparse: its
+        // size is then bounded by `max_sparse_dofs` and the memory estimate, not by the dense
+        // limits, which a rotor that turns out small or Guyan-reduced is parsed with again.
+        let eligible = self.max_frequency.is_some()
+            && self.modes.is_none()
+            && self.modal_reduction.unwrap_or(true)
+            && matches!(
+                self.damping,
+                DampingInput::Viscous(_) | DampingInput::Hysteretic(_)
+            );
+        let relaxed = Limits {
+            max_dofs: limits.max_sparse_dofs.max(limits.max_dofs),
+            dofs_setting: "WHIRL_MAX_SPARSE_DOFS",
+            max_states: usize::MAX,
+            ..*limits
+        };
+        let (model, speeds) = self.parse_sweep(if eligible { &relaxed } else { limits })?;
+        let size = model.size();
+        // Beam rotors only (a matrix rotor's matrices are dense), without Guyan reduction (whose
+        // matrices are too).
+        let sparse = eligible
+            && matches!(model.rotor, Rotor::Beam(_))
+            && size.dofs > SPARSE_FROM
+            && size.assembled == size.dofs;
+        let (model, speeds) = match eligible && !sparse {
+            true => self.parse_sweep(limits)?,
+            false => (model, speeds),
+        };
         let size = model.size();
         let count = speeds.as_slice().len();
         let rotor_poles = 2 * size.dofs as u64;
@@ -58,7 +85,10 @@ impl SweepRequest {
         // only after the solve. Two values per branch and speed.
         let branches = modes.map_or(rotor_poles, |m| m as u64);
         let values = count as u64 * (1 + 2 * branches);
-        let cost = sweep_cost(size, count, limits, true, values);
+        let cost = match sparse {
+            true => sparse_sweep_cost(size, model.rotor.doubled(), count, limits, values),
+            false => sweep_cost(size, count, limits, true, values),
+        };
         let bounded = self.max_frequency.is_none() && modes.is_none();
         let (lo, hi) = speeds.range();
         let task = Task {
@@ -70,6 +100,8 @@ impl SweepRequest {
                 max_frequency: self.max_frequency.map_or(f64::INFINITY, SpeedInput::rad_s),
                 modes,
                 reduce: self.modal_reduction.unwrap_or(true),
+                sparse,
+                max_states: sparse_states(limits),
             },
             cost,
         };

@@ -11,7 +11,10 @@ use super::api::{
 use super::damping::BranchSet;
 use super::damping::DampingModel;
 use super::error::{Invalid, finite, non_negative, positive};
-use super::limits::{BATCH_PER_THREAD, Cost, Limits, Size};
+use super::limits::{
+    BATCH_PER_THREAD, Cost, Limits, SPARSE_FROM, SPARSE_REDUCED_STATES, Size,
+    sparse_bytes_per_coordinate,
+};
 use super::loads::{Excitation, Force, Pwl, SpeedLaw, TimeSpec, Unbalance, sample_count};
 use super::rotor::BeamRotor;
 use super::rotor::Rotor;
@@ -192,6 +195,11 @@ pub enum TaskKind {
         modes: Option<usize>,
         /// Whether a checked modal reduction may be used.
         reduce: bool,
+        /// Whether the rotor is held sparse (`analysis::large`): a bounded sweep of the viscous
+        /// or hysteretic model, no Guyan reduction, more than [`SPARSE_FROM`] coordinates.
+        sparse: bool,
+        /// Largest reduced model the sparse path may solve (its cost was estimated so).
+        max_states: usize,
     },
     Stability {
         model: Model,
@@ -369,6 +377,41 @@ fn speeds(
 
 /// Cost of a sweep of `speeds` pole sets solved in parallel and streamed through the tracker,
 /// answering `values` numbers.
+/// A bounded sweep of a large rotor held sparse (`analysis::large`): linear in its coordinates
+/// ([`sparse_bytes_per_coordinate`]), and the dense sweep of its reduced model, of at most
+/// [`sparse_states`] states (a larger one is refused when it is found).
+fn sparse_sweep_cost(
+    size: Size,
+    doubled: bool,
+    speeds: usize,
+    limits: &Limits,
+    values: u64,
+) -> Cost {
+    let dofs = (sparse_states(limits) / 2).min(size.dofs);
+    let reduced = Size {
+        assembled: dofs,
+        dofs,
+        internal: 0,
+        ..size
+    };
+    let dense = sweep_cost(reduced, speeds, limits, true, values);
+    let linear = size.dofs as u64 * sparse_bytes_per_coordinate(doubled);
+    Cost {
+        peak_bytes: dense.peak_bytes + linear,
+        ..dense
+    }
+    .with_work(dense.work + SPARSE_WORK * size.dofs as f64)
+}
+
+/// Largest reduced model of a sparse sweep.
+pub fn sparse_states(limits: &Limits) -> usize {
+    SPARSE_REDUCED_STATES.min(limits.max_states)
+}
+
+/// Flops per coordinate of the sparse path (factors, Lanczos and Arnoldi steps with their
+/// reorthogonalisation), for the work estimate only.
+const SPARSE_WORK: f64 = 2e5;
+
 fn sweep_cost(size: Size, speeds: usize, limits: &Limits, tracked: bool, values: u64) -> Cost {
     let threads = limits.threads.max(1);
     let batch = BATCH_PER_THREAD * threads;

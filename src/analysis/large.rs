@@ -1,0 +1,145 @@
+//! Sweeps of large rotors: the checked modal reduction with no dense matrix of the rotor's size.
+//!
+//! [`super::reduction`] reduces a sweep on the lowest undamped modes and checks it against the
+//! full model, but holds the full model dense: its modes by a full symmetric eigensolve
+//! (`O(n^3)`) and its poles through a dense factor of `Z(sigma)` (`O(n^3)`), so that a sweep's
+//! cost grows with the cube of the mesh. Here every step is linear in the mesh: the lowest modes
+//! by shift-invert Lanczos on the sparse `(K, M)` ([`ModalBasis::lowest`]), their static
+//! corrections by a sparse Cholesky factor of `K`, the projections by sparse products, and the
+//! full model's poles in the disc the check reads by shift-invert Arnoldi through a sparse LU
+//! of `Z(sigma)` ([`crate::damping::large`]). The reduced model is small and dense as before;
+//! the basis widens by half until the check passes (the same check, [`TOLERANCE`] relative).
+//!
+//! Used for bounded sweeps of the viscous and hysteretic models (whose full model is the rotor's
+//! own second-order system) where the full model has more than [`SPARSE_FROM`] coordinates and
+//! no Guyan reduction (the parse decides, `model::task`); below that the dense path is as fast.
+//! The answer's reduction says which was used.
+//!
+//! [`SPARSE_FROM`]: crate::model::limits::SPARSE_FROM
+
+use super::AnalysisError;
+use super::nearest;
+use super::reduction::{
+    Criterion, Reduction, TOLERANCE, both_ways, checked_speeds, compared_at, with_supports,
+};
+use crate::damping::{DampedModel, DampingError, large};
+use crate::fem::modal::{ModalBasis, ModalError};
+use crate::linalg::{LinalgError, arnoldi, c64};
+use crate::model::damping::DampingModel;
+use crate::model::limits::SPARSE_ARNOLDI;
+use crate::system::{Layout, RotorSystem};
+
+/// Coordinates `N` of the full second-order model.
+pub fn full_size(system: &RotorSystem) -> usize {
+    match system.layout() {
+        Layout::Single => system.n(),
+        Layout::Doubled => 2 * system.n(),
+    }
+}
+
+/// Why a large rotor's sweep could not be reduced: the dense full model is no fallback there.
+fn not_reduced(states: usize, max_states: usize) -> AnalysisError {
+    AnalysisError::Damping(DampingError::Unsolvable(format!(
+        "no modal reduction of this rotor ({states} states) with at most half its states and \
+         at most {max_states} (WHIRL_MAX_STATES) passed the check against the full model, and \
+         a rotor this large is not solved dense: lower `max_frequency`"
+    )))
+}
+
+/// The checked reduced model of a sweep over `speeds` below `bound` (see the module docs).
+pub fn reduce_for_sweep(
+    system: &RotorSystem,
+    damping: &DampingModel,
+    speeds: &[f64],
+    bound: f64,
+    max_states: usize,
+) -> Result<(DampedModel, Reduction), AnalysisError> {
+    let full_states = 2 * full_size(system);
+    let checked = checked_speeds(system, speeds);
+    let loads = with_supports(system, &[]);
+    let band = |w: f64| w <= 2.0 * bound;
+    let lowest = |count: usize| {
+        ModalBasis::lowest(system, |w2| {
+            w2.len() >= count && w2.last().is_some_and(|&l| !band(l.sqrt()))
+        })
+        .map_err(|e| AnalysisError::Damping(DampingError::Modal(e)))
+    };
+    let mut basis = lowest(4)?;
+    let mut m = basis.omega.iter().filter(|&&w| band(w)).count().max(4);
+    let exact = checked
+        .iter()
+        .map(|&w| full_poles(system, damping, w, 1.5 * bound))
+        .collect::<Result<Vec<_>, _>>()?;
+    loop {
+        if basis.len() < m + 1 {
+            basis = lowest(m + 1)?;
+        }
+        let sub = basis
+            .augmented_with(system, m, &loads)
+            .map_err(|e: ModalError| AnalysisError::Damping(DampingError::Modal(e)))?;
+        let reduced = sub.reduce(system);
+        let model = DampedModel::build(&reduced, damping)?;
+        if 2 * model.states() > full_states || model.states() > max_states {
+            return Err(not_reduced(full_states, max_states));
+        }
+        let approx = checked
+            .iter()
+            .map(|&w| compared_at(&model, w))
+            .collect::<Result<Vec<_>, _>>()?;
+        let criterion = Criterion::Relative(TOLERANCE);
+        let error = exact
+            .iter()
+            .zip(&approx)
+            .map(|(e, a)| both_ways(e, a, bound, criterion))
+            .fold(0.0, f64::max);
+        if error <= TOLERANCE {
+            let info = Reduction {
+                modes: m,
+                vectors: sub.len(),
+                states: model.states(),
+                full_states,
+                band: basis.omega[m - 1],
+                checked_speed: checked[0],
+                checked_speeds: checked,
+                max_relative_error: error,
+                sparse: true,
+            };
+            return Ok((model, info));
+        }
+        m = (3 * m).div_ceil(2);
+    }
+}
+
+/// Every pole of the full model at `speed` within `radius` of the origin (for the hysteretic
+/// model, the consistent roots of its four problems), by shift-invert Arnoldi through sparse
+/// factors.
+pub fn full_poles(
+    system: &RotorSystem,
+    damping: &DampingModel,
+    speed: f64,
+    radius: f64,
+) -> Result<Vec<c64>, AnalysisError> {
+    let problems = large::problems(system, damping, speed).ok_or_else(|| {
+        AnalysisError::Damping(DampingError::Unsolvable(
+            "the equivalent and nonviscous models of a large rotor have no sparse form".into(),
+        ))
+    })?;
+    // Off both axes, as `nearest` shifts (rigid-body poles at 0, mirror pairs on the real axis).
+    let sigma = c64::new(0.0113, 0.0137) * (radius / 1.5);
+    let mut out = vec![];
+    for p in &problems {
+        let op = p.shift_invert(sigma)?;
+        let size = op.states();
+        let found = arnoldi::nearest(
+            size,
+            |b| op.solve(b),
+            sigma,
+            radius,
+            nearest::TOLERANCE,
+            (size / 2).min(SPARSE_ARNOLDI),
+        )?
+        .ok_or(AnalysisError::Linalg(LinalgError::NoConvergence))?;
+        out.extend(found.values.into_iter().filter(|&s| p.consistent(s, speed)));
+    }
+    Ok(out)
+}

@@ -1,0 +1,199 @@
+//! The full model of a large rotor, sparse: its shift-invert without a dense matrix.
+//!
+//! For the viscous and hysteretic models the full model is the rotor's own second-order
+//! system (MODEL.md section 1, `state.rs` for its first-order form): at spin speed `Omega`,
+//! `M x'' + D x' + K x = 0` with
+//!
+//! ```text
+//! D = C_n + C_r - i Omega spin G,    K = K + i S - i Omega spin C_r   [+ i a K''_n + i diag(b, c) K''_r]
+//! ```
+//!
+//! the bracket for one sign pattern `(a, b, c)` of the hysteretic model (`hysteretic.rs`), the
+//! supports written on their translations in the layout as `system::realize` writes them.
+//! Every matrix keeps the rotor's band, so `Z(sigma) = sigma^2 M + sigma D + K` factors sparse
+//! at a cost linear in the mesh, and `(A - sigma I)^-1 [b1, b2] = [b2 + sigma x, x]` with
+//! `Z(sigma) x = -M b1 - (sigma M + D) b2` (`harmonic::ShiftInvert` without internal
+//! coordinates) is what shift-invert Arnoldi needs.
+
+use super::hysteretic::patterns;
+use crate::linalg::{LinalgError, Sparse, c64, sparse::Lu};
+use crate::model::damping::DampingModel;
+use crate::model::supports::Matrix2;
+use crate::system::{Layout, RotorSystem, point_action};
+
+/// Complex entries `(row, column, value)`, repeated positions summed.
+type Entries = Vec<(usize, usize, c64)>;
+
+/// One linear problem of the full model at one speed.
+pub struct Problem {
+    /// Size `N` of the second-order matrices (`n`, or `2 n` doubled).
+    pub size: usize,
+    mass: Entries,
+    damping: Entries,
+    stiffness: Entries,
+    /// The hysteretic model's sign pattern `(a, b, c)` this problem assumes.
+    pub signs: Option<(f64, f64, f64)>,
+}
+
+/// The full model's problems at `speed`: one (viscous), four (hysteretic, one per sign
+/// pattern), or `None` for the models built on a modal basis, which have no sparse form.
+pub fn problems(system: &RotorSystem, damping: &DampingModel, speed: f64) -> Option<Vec<Problem>> {
+    let hysteretic = match damping {
+        DampingModel::Viscous => false,
+        DampingModel::Hysteretic => true,
+        _ => return None,
+    };
+    let layout = system.layout();
+    let n = system.n();
+    let size = match layout {
+        Layout::Single => n,
+        Layout::Doubled => 2 * n,
+    };
+    let spin = |i: usize| if i < n { 1.0 } else { -1.0 };
+    let i1 = c64::new(0.0, 1.0);
+    let real = |v: f64| c64::new(v, 0.0);
+    // A rotor matrix on the diagonal block(s), times `f(row)`.
+    let blocks = |out: &mut Entries, a: &Sparse, f: &dyn Fn(usize) -> c64| {
+        for (i, j, v) in a.entries() {
+            out.push((i, j, f(i) * v));
+            if layout == Layout::Doubled {
+                out.push((n + i, n + j, f(n + i) * v));
+            }
+        }
+    };
+    let support = |out: &mut Entries, w: &[(usize, f64)], a: &Matrix2| {
+        let k = point_action(a, layout);
+        for &(i, wi) in w {
+            for &(j, wj) in w {
+                for b in 0..k.nrows() {
+                    for c in 0..k.ncols() {
+                        out.push((i + b * n, j + c * n, k[(b, c)] * (wi * wj)));
+                    }
+                }
+            }
+        }
+    };
+    let (mut mass, mut d, mut k) = (vec![], vec![], vec![]);
+    let (mut loss_n, mut loss_r) = (vec![], vec![]);
+    blocks(&mut mass, &system.mass, &|_| real(1.0));
+    blocks(&mut d, &system.damping_nonrotating, &|_| real(1.0));
+    blocks(&mut d, &system.damping_rotating, &|_| real(1.0));
+    blocks(&mut d, &system.gyroscopic, &|i| -i1 * (speed * spin(i)));
+    blocks(&mut k, &system.stiffness_rotating, &|_| real(1.0));
+    blocks(&mut k, &system.stiffness_nonrotating, &|_| real(1.0));
+    blocks(&mut k, &system.circulatory, &|i| i1 * spin(i));
+    blocks(&mut k, &system.damping_rotating, &|i| {
+        -i1 * (speed * spin(i))
+    });
+    if hysteretic {
+        blocks(&mut loss_n, &system.hysteretic_nonrotating, &|_| real(1.0));
+        blocks(&mut loss_r, &system.hysteretic_rotating, &|_| real(1.0));
+    }
+    for p in &system.supports {
+        let c = p.support.at(speed);
+        let w = p.at.weights();
+        support(&mut k, &w, &c.k);
+        support(&mut d, &w, &c.c);
+        support(&mut mass, &w, &c.m);
+        if hysteretic {
+            support(
+                &mut loss_n,
+                &w,
+                &c.k.symmetric().scaled(p.support.loss_factor),
+            );
+        }
+    }
+    let problem = |stiffness: Entries, signs| Problem {
+        size,
+        mass: mass.clone(),
+        damping: d.clone(),
+        stiffness,
+        signs,
+    };
+    Some(match hysteretic {
+        false => vec![problem(k, None)],
+        true => patterns(layout)
+            .into_iter()
+            .map(|(a, b, c)| {
+                let mut kk = k.clone();
+                kk.extend(loss_n.iter().map(|&(i, j, v)| (i, j, i1 * a * v)));
+                kk.extend(loss_r.iter().map(|&(i, j, v)| {
+                    let rot = if spin(i) > 0.0 { b } else { c };
+                    (i, j, i1 * rot * v)
+                }));
+                problem(kk, Some((a, b, c)))
+            })
+            .collect(),
+    })
+}
+
+/// `(A - sigma I)^-1` of one problem's first-order form, through a sparse factor of `Z(sigma)`.
+pub struct ShiftInvert {
+    sigma: c64,
+    size: usize,
+    mass: Entries,
+    /// `sigma M + D`.
+    damping: Entries,
+    lu: Lu,
+}
+
+impl Problem {
+    pub fn shift_invert(&self, sigma: c64) -> Result<ShiftInvert, LinalgError> {
+        let mut damping: Entries = self
+            .mass
+            .iter()
+            .map(|&(i, j, v)| (i, j, sigma * v))
+            .collect();
+        damping.extend_from_slice(&self.damping);
+        let mut z: Entries = self
+            .mass
+            .iter()
+            .map(|&(i, j, v)| (i, j, sigma * sigma * v))
+            .collect();
+        z.extend(self.damping.iter().map(|&(i, j, v)| (i, j, sigma * v)));
+        z.extend_from_slice(&self.stiffness);
+        Ok(ShiftInvert {
+            sigma,
+            size: self.size,
+            mass: self.mass.clone(),
+            damping,
+            lu: Lu::new(self.size, &z)?,
+        })
+    }
+
+    /// Whether the root `s` at spin speed `speed` has the signs this problem assumed (always,
+    /// for the viscous model).
+    pub fn consistent(&self, s: c64, speed: f64) -> bool {
+        match self.signs {
+            None => true,
+            Some((a, b, c)) => {
+                let w = s.im;
+                a * w > 0.0 && b * (w - speed) > 0.0 && (c == 0.0 || c * (w + speed) > 0.0)
+            }
+        }
+    }
+}
+
+impl ShiftInvert {
+    /// State size `2 N`.
+    pub fn states(&self) -> usize {
+        2 * self.size
+    }
+
+    /// `(A - sigma I)^-1 b`, `b = [b1, b2]` (velocities, displacements).
+    pub fn solve(&self, b: &[c64]) -> Vec<c64> {
+        let n = self.size;
+        let (b1, b2) = b.split_at(n);
+        let mut x = vec![c64::new(0.0, 0.0); n];
+        for &(i, j, v) in &self.mass {
+            x[i] -= v * b1[j];
+        }
+        for &(i, j, v) in &self.damping {
+            x[i] -= v * b2[j];
+        }
+        self.lu.solve_in_place(&mut x);
+        let mut out: Vec<c64> = b2.iter().zip(&x).map(|(b, x)| b + self.sigma * x).collect();
+        out.extend_from_slice(&x);
+        out
+    }
+}
