@@ -122,15 +122,7 @@ mod tests {
     #[test]
     fn lowest_modes_of_a_fixed_string() {
         let n = 400;
-        let mut e = vec![];
-        for i in 0..n {
-            e.push((i, i, 2.0));
-            if i + 1 < n {
-                e.push((i, i + 1, -1.0));
-                e.push((i + 1, i, -1.0));
-            }
-        }
-        let k = Sparse::from_triplets(n, n, &e);
+        let k = crate::linalg::sparse::tests::laplacian(n);
         let m = Sparse::from_triplets(n, n, &(0..n).map(|i| (i, i, 1.0)).collect::<Vec<_>>());
         let modes = lowest_modes(&k, &m, |w2| w2.len() >= 6).unwrap();
         assert!(modes.omega_squared.len() >= 6);

@@ -286,12 +286,12 @@ impl Lu {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
     /// The 1-D Laplacian `tridiag(-1, 2, -1)` of order `n`: SPD, eigenvalues
-    /// `2 - 2 cos(k pi / (n + 1))`.
-    fn laplacian(n: usize) -> Sparse {
+    /// `2 - 2 cos(k pi / (n + 1))` (also a string of unit masses between unit springs).
+    pub(crate) fn laplacian(n: usize) -> Sparse {
         let mut e = vec![];
         for i in 0..n {
             e.push((i, i, 2.0));

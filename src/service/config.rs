@@ -554,9 +554,10 @@ mod tests {
             "WHIRL_MAX_CONNECTIONS_PER_CLIENT",
             "WHIRL_MAX_STUDY_SAMPLES",
             "WHIRL_STUDY_QUEUE",
+            "WHIRL_MAX_SPARSE_DOFS",
         ] {
             assert_eq!(vars.iter().filter(|x| **x == v).count(), 1, "{v}");
         }
-        assert_eq!(vars.len(), 33);
+        assert_eq!(vars.len(), 34);
     }
 }
