@@ -29,11 +29,15 @@ pub struct SignedModel {
 impl SignedModel {
     /// Whether the root `s` at spin speed `speed` has the signs this problem assumed.
     pub fn consistent(&self, s: c64, speed: f64) -> bool {
-        let w = s.im;
-        self.nonrotating * w > 0.0
-            && self.rotating * (w - speed) > 0.0
-            && (self.counter == 0.0 || self.counter * (w + speed) > 0.0)
+        consistent((self.nonrotating, self.rotating, self.counter), s, speed)
     }
+}
+
+/// Whether the root `s` at spin speed `speed` has the signs `(a, b, c)` of its problem: of
+/// `omega`, `omega - Omega` and (doubled; 0 when it does not apply) `omega + Omega`.
+pub fn consistent((a, b, c): (f64, f64, f64), s: c64, speed: f64) -> bool {
+    let w = s.im;
+    a * w > 0.0 && b * (w - speed) > 0.0 && (c == 0.0 || c * (w + speed) > 0.0)
 }
 
 /// The sign patterns of a layout: `(a, b, c)`.

@@ -164,13 +164,8 @@ impl Problem {
     /// Whether the root `s` at spin speed `speed` has the signs this problem assumed (always,
     /// for the viscous model).
     pub fn consistent(&self, s: c64, speed: f64) -> bool {
-        match self.signs {
-            None => true,
-            Some((a, b, c)) => {
-                let w = s.im;
-                a * w > 0.0 && b * (w - speed) > 0.0 && (c == 0.0 || c * (w + speed) > 0.0)
-            }
-        }
+        self.signs
+            .is_none_or(|signs| super::hysteretic::consistent(signs, s, speed))
     }
 }
 

@@ -76,14 +76,7 @@ impl ModalBasis {
             .map(|i| k.get(i, i) / m.get(i, i))
             .filter(|r| r.is_finite())
             .fold(0.0, f64::max);
-        for (i, &w2) in modes.omega_squared.iter().enumerate() {
-            if w2 <= 1e-11 * largest || w2 <= 0.0 {
-                return Err(ModalError::RigidBody {
-                    mode: i + 1,
-                    omega_squared: w2,
-                });
-            }
-        }
+        supported_below(&modes.omega_squared, largest)?;
         Ok(ModalBasis {
             omega: modes.omega_squared.iter().map(|w2| w2.sqrt()).collect(),
             phi: modes.phi,
@@ -231,7 +224,14 @@ impl ModalBasis {
 /// A rigid-body mode has `w^2 ~ 0` relative to the largest; equivalent and nonviscous damping
 /// divide by `w`, so it is refused here rather than turned into infinities.
 fn supported(omega_squared: &[f64]) -> Result<(), ModalError> {
-    let largest = omega_squared.iter().cloned().fold(0.0, f64::max);
+    supported_below(
+        omega_squared,
+        omega_squared.iter().cloned().fold(0.0, f64::max),
+    )
+}
+
+/// [`supported`] against `largest`, the highest `w^2` or a lower bound of it.
+fn supported_below(omega_squared: &[f64], largest: f64) -> Result<(), ModalError> {
     for (i, &w2) in omega_squared.iter().enumerate() {
         if w2 <= 1e-11 * largest || w2 <= 0.0 {
             return Err(ModalError::RigidBody {
