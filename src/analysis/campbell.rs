@@ -6,6 +6,7 @@ use super::control::Control;
 use super::criticals::{self, Critical};
 use super::poles::{self, Whirl};
 use super::reduction::{Reduction, reduce_for_sweep};
+use super::refine::{self, Full};
 use super::stability::{Threshold, sweep, threshold};
 use super::tracking::{Ambiguity, Tracker};
 use crate::damping::{DampedModel, ModelKind};
@@ -220,8 +221,11 @@ pub fn campbell_below(
         None
     };
     match reduced {
-        Some((model, reduction)) => {
+        Some((model, mut reduction)) => {
             let mut r = campbell_kept(&model, speeds, keep, control)?;
+            let full = Full::of(system, damping, full);
+            reduction.outside = refine::outside_box(&mut r, full, keep.below)?;
+            r.critical_speeds = forward_criticals(&r.criticals);
             r.reduction = Some(reduction);
             Ok(r)
         }
@@ -239,9 +243,12 @@ pub fn campbell_large(
     max_states: usize,
     control: &Control,
 ) -> Result<CampbellResult, AnalysisError> {
-    let (model, reduction) =
+    let (model, mut reduction) =
         super::large::reduce_for_sweep(system, damping, speeds, keep.below, max_states)?;
     let mut r = campbell_kept(&model, speeds, keep, control)?;
+    let full = Full::Sparse { system, damping };
+    reduction.outside = refine::outside_box(&mut r, full, keep.below)?;
+    r.critical_speeds = forward_criticals(&r.criticals);
     r.reduction = Some(reduction);
     Ok(r)
 }

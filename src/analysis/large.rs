@@ -22,6 +22,7 @@ use super::nearest;
 use super::reduction::{
     Criterion, Reduction, TOLERANCE, both_ways, checked_speeds, compared_at, with_supports,
 };
+use super::refine::Outside;
 use crate::damping::{DampedModel, DampingError, large};
 use crate::fem::modal::{ModalBasis, ModalError};
 use crate::linalg::{LinalgError, arnoldi, c64};
@@ -103,6 +104,7 @@ pub fn reduce_for_sweep(
                 checked_speeds: checked,
                 max_relative_error: error,
                 sparse: true,
+                outside: Outside::default(),
             };
             return Ok((model, info));
         }

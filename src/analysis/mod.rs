@@ -10,6 +10,7 @@ pub mod modal;
 pub mod nearest;
 pub mod poles;
 pub mod reduction;
+pub mod refine;
 pub mod response;
 pub mod roots;
 pub mod run;

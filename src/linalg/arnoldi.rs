@@ -35,6 +35,30 @@ pub fn nearest(
     tolerance: f64,
     max_dimension: usize,
 ) -> Result<Option<Nearest>, LinalgError> {
+    nearest_from(
+        size,
+        solve,
+        sigma,
+        radius,
+        tolerance,
+        (40, 3),
+        max_dimension,
+    )
+}
+
+/// [`nearest`] starting from a space of `first.0` vectors and asking at least `first.1`
+/// converged Ritz values beyond the disc (fewer of both where only the eigenvalue nearest the
+/// shift is wanted: the refinement of one pole, where no guard is needed beyond that one's own
+/// convergence, which a nearer eigenvalue's would precede).
+pub fn nearest_from(
+    size: usize,
+    solve: impl Fn(&[c64]) -> Vec<c64>,
+    sigma: c64,
+    radius: f64,
+    tolerance: f64,
+    first: (usize, usize),
+    max_dimension: usize,
+) -> Result<Option<Nearest>, LinalgError> {
     let zero = c64::new(0.0, 0.0);
     let max_dimension = max_dimension.min(size);
     // A fixed start vector with every component present (reproducible answers).
@@ -51,7 +75,7 @@ pub fn nearest(
     let mut basis: Vec<c64> = v0;
     // Columns of H (each of length j + 2).
     let mut h: Vec<Vec<c64>> = vec![];
-    let mut target = 40.min(max_dimension);
+    let mut target = first.0.max(1).min(max_dimension);
     loop {
         // Extend the space to `target` vectors.
         let mut exhausted = false;
@@ -97,8 +121,10 @@ pub fn nearest(
             .collect();
         ritz.sort_by(|a, b| b.2.total_cmp(&a.2));
         let inside = ritz.iter().filter(|r| r.2 * radius >= 1.0).count();
-        let guard = (inside / 4).max(3);
-        let wanted = (inside + guard).min(m);
+        let guard = (inside / 4).max(first.1);
+        // At least the Ritz value nearest the shift: with no guard, the answer is then
+        // whatever of the disc holds the converged nearest eigenvalue.
+        let wanted = (inside + guard).max(1).min(m);
         let converged = ritz[..wanted].iter().all(|r| r.1);
         if exhausted || (converged && (inside + guard <= m)) {
             let mut out = Nearest {

@@ -286,6 +286,27 @@ pub struct ReductionInfo {
     /// by shift-invert Arnoldi; no dense matrix of the rotor's size).
     #[serde(default)]
     pub full_model: Storage,
+    /// The poles reported outside that box (a heavily damped mode whose |decay_rate|, or a
+    /// branch whose |frequency|, passes `max_frequency`), which the check does not cover: each
+    /// replaced by the full model's pole nearest it at its speed.
+    #[serde(default)]
+    pub outside_box: OutsideBox,
+}
+
+/// The poles of a reduced sweep outside the box its reduction was checked in (see
+/// [`ReductionInfo::outside_box`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Deserialize, Serialize, ToSchema)]
+pub struct OutsideBox {
+    /// Poles reported outside the box, over every speed.
+    pub poles: usize,
+    /// Of those, replaced by the full model's pole nearest them (searched within 25 % of
+    /// each).
+    pub refined: usize,
+    /// Of those, removed: the full model has no pole within 25 % of them. The rest (`poles -
+    /// refined - removed`) are kept as the reduced model gives them.
+    pub removed: usize,
+    /// Largest change of a refined pole, relative to its modulus.
+    pub largest_change: f64,
 }
 
 /// How a rotor's full model was held (see [`ReductionInfo::full_model`]).
