@@ -224,7 +224,7 @@ pub fn campbell_below(
         Some((model, mut reduction)) => {
             let mut r = campbell_kept(&model, speeds, keep, control)?;
             let full = Full::of(system, damping, full);
-            reduction.outside = refine::outside_box(&mut r, full, keep.below)?;
+            reduction.outside = Some(refine::outside_box(&mut r, full, keep.below)?);
             r.critical_speeds = forward_criticals(&r.criticals);
             r.reduction = Some(reduction);
             Ok(r)
@@ -247,7 +247,7 @@ pub fn campbell_large(
         super::large::reduce_for_sweep(system, damping, speeds, keep.below, max_states)?;
     let mut r = campbell_kept(&model, speeds, keep, control)?;
     let full = Full::Sparse { system, damping };
-    reduction.outside = refine::outside_box(&mut r, full, keep.below)?;
+    reduction.outside = Some(refine::outside_box(&mut r, full, keep.below)?);
     r.critical_speeds = forward_criticals(&r.criticals);
     r.reduction = Some(reduction);
     Ok(r)

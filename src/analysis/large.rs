@@ -20,9 +20,8 @@
 use super::AnalysisError;
 use super::nearest;
 use super::reduction::{
-    Criterion, Reduction, TOLERANCE, both_ways, checked_speeds, compared_at, with_supports,
+    Criterion, Reduced, Reduction, TOLERANCE, both_ways, checked_speeds, compared_at, with_supports,
 };
-use super::refine::Outside;
 use crate::damping::{DampedModel, DampingError, large};
 use crate::fem::modal::{ModalBasis, ModalError};
 use crate::linalg::{LinalgError, arnoldi, c64};
@@ -55,9 +54,47 @@ pub fn reduce_for_sweep(
     bound: f64,
     max_states: usize,
 ) -> Result<(DampedModel, Reduction), AnalysisError> {
+    let check = Check {
+        speeds: checked_speeds(system, speeds),
+        bound,
+        criterion: Criterion::Relative(TOLERANCE),
+    };
+    match reduce(system, damping, lowest(system, 4)?, &check, &[], max_states)? {
+        Some(r) => Ok((r.model, r.info)),
+        None => Err(not_reduced(2 * full_size(system), max_states)),
+    }
+}
+
+/// What a reduction is checked for: every full-model pole in the box `|Re s|, |Im s| <= bound`
+/// at each of `speeds` (the first reported) reproduced as `criterion` asks, both ways.
+pub struct Check {
+    pub speeds: Vec<f64>,
+    pub bound: f64,
+    pub criterion: Criterion,
+}
+
+/// At least the lowest `count` undamped modes, by Lanczos.
+pub fn lowest(system: &RotorSystem, count: usize) -> Result<ModalBasis, AnalysisError> {
+    ModalBasis::lowest(system, |w2| w2.len() >= count)
+        .map_err(|e| AnalysisError::Damping(DampingError::Modal(e)))
+}
+
+/// The sparse counterpart of [`super::reduction::reduce_checked`]: from `basis` (the lowest
+/// modes, extended by Lanczos as needed), the modes with `w <= 2 bound` (at least 4), their
+/// static corrections and those of unit loads on `loads` and where the supports act, widened by
+/// half until `check` passes; `None` when no basis of at most half the states and `max_states`
+/// does.
+pub fn reduce(
+    system: &RotorSystem,
+    damping: &DampingModel,
+    mut basis: ModalBasis,
+    check: &Check,
+    loads: &[usize],
+    max_states: usize,
+) -> Result<Option<Reduced>, AnalysisError> {
+    let (checked, bound, criterion) = (&check.speeds, check.bound, check.criterion);
     let full_states = 2 * full_size(system);
-    let checked = checked_speeds(system, speeds);
-    let loads = with_supports(system, &[]);
+    let loads = with_supports(system, loads);
     let band = |w: f64| w <= 2.0 * bound;
     let lowest = |count: usize| {
         ModalBasis::lowest(system, |w2| {
@@ -65,12 +102,18 @@ pub fn reduce_for_sweep(
         })
         .map_err(|e| AnalysisError::Damping(DampingError::Modal(e)))
     };
-    let mut basis = lowest(4)?;
+    // Every mode in the band, and one past it.
+    if basis.omega.last().is_none_or(|&w| band(w)) {
+        basis = lowest(basis.len() + 1)?;
+    }
     let mut m = basis.omega.iter().filter(|&&w| band(w)).count().max(4);
     let exact = checked
         .iter()
         .map(|&w| full_poles(system, damping, w, 1.5 * bound))
         .collect::<Result<Vec<_>, _>>()?;
+    let tolerance = match criterion {
+        Criterion::Relative(t) | Criterion::Response(t) => t,
+    };
     loop {
         if basis.len() < m + 1 {
             basis = lowest(m + 1)?;
@@ -81,19 +124,18 @@ pub fn reduce_for_sweep(
         let reduced = sub.reduce(system);
         let model = DampedModel::build(&reduced, damping)?;
         if 2 * model.states() > full_states || model.states() > max_states {
-            return Err(not_reduced(full_states, max_states));
+            return Ok(None);
         }
         let approx = checked
             .iter()
             .map(|&w| compared_at(&model, w))
             .collect::<Result<Vec<_>, _>>()?;
-        let criterion = Criterion::Relative(TOLERANCE);
         let error = exact
             .iter()
             .zip(&approx)
             .map(|(e, a)| both_ways(e, a, bound, criterion))
             .fold(0.0, f64::max);
-        if error <= TOLERANCE {
+        if error <= tolerance {
             let info = Reduction {
                 modes: m,
                 vectors: sub.len(),
@@ -101,12 +143,17 @@ pub fn reduce_for_sweep(
                 full_states,
                 band: basis.omega[m - 1],
                 checked_speed: checked[0],
-                checked_speeds: checked,
+                checked_speeds: checked.to_vec(),
                 max_relative_error: error,
                 sparse: true,
-                outside: Outside::default(),
+                outside: None,
             };
-            return Ok((model, info));
+            return Ok(Some(Reduced {
+                system: reduced,
+                model,
+                basis: sub,
+                info,
+            }));
         }
         m = (3 * m).div_ceil(2);
     }

@@ -20,7 +20,6 @@
 
 use super::AnalysisError;
 use super::nearest::Wanted;
-use super::refine::Outside;
 use crate::damping::{DampedModel, ModelKind};
 use crate::fem::modal::ModalBasis;
 use crate::linalg::{self, LinalgError, c64};
@@ -68,9 +67,9 @@ pub struct Reduction {
     pub max_relative_error: f64,
     /// Whether the full model was held sparse (`analysis::large`).
     pub sparse: bool,
-    /// The poles reported outside the checked box, refined on the full model
+    /// For a sweep, the poles it reported outside the checked box, refined on the full model
     /// ([`super::refine`]).
-    pub outside: Outside,
+    pub outside: Option<super::refine::Outside>,
 }
 
 /// The reduced model for a sweep over `speeds` with poles wanted below `bound`, or `None` when
@@ -234,7 +233,7 @@ pub fn reduce_checked(
                 checked_speeds: checked.to_vec(),
                 max_relative_error: error,
                 sparse: false,
-                outside: Outside::default(),
+                outside: None,
             };
             return Ok(Some(Reduced {
                 system: reduced,

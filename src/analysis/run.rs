@@ -267,7 +267,14 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
             })
         }
         TaskKind::Time { model, spec } => {
-            let (system, damped) = build(model)?;
+            let system = assemble(model)?;
+            let sparse =
+                time::reduced::solve_sparse(&system, &model.damping, spec, spec.reduce, control)?;
+            if let Some((r, reduction)) = sparse {
+                return Ok(Outcome::Time(r, Some(reduction)));
+            }
+            let damped = DampedModel::build(&system, &model.damping)
+                .map_err(|e| damping_error(e, &model.rotor))?;
             let (r, reduction) =
                 time::reduced::solve(&system, &model.damping, &damped, spec, spec.reduce, control)?;
             Ok(Outcome::Time(r, reduction))

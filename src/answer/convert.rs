@@ -198,12 +198,12 @@ pub fn reduction(d: &crate::analysis::reduction::Reduction) -> api::ReductionInf
             true => api::Storage::Sparse,
             false => api::Storage::Dense,
         },
-        outside_box: api::OutsideBox {
-            poles: d.outside.poles,
-            refined: d.outside.refined,
-            removed: d.outside.removed,
-            largest_change: d.outside.largest_change,
-        },
+        outside_box: d.outside.map(|o| api::OutsideBox {
+            poles: o.poles,
+            refined: o.refined,
+            removed: o.removed,
+            largest_change: o.largest_change,
+        }),
     }
 }
 

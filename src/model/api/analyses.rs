@@ -286,11 +286,11 @@ pub struct ReductionInfo {
     /// by shift-invert Arnoldi; no dense matrix of the rotor's size).
     #[serde(default)]
     pub full_model: Storage,
-    /// The poles reported outside that box (a heavily damped mode whose |decay_rate|, or a
-    /// branch whose |frequency|, passes `max_frequency`), which the check does not cover: each
-    /// replaced by the full model's pole nearest it at its speed.
-    #[serde(default)]
-    pub outside_box: OutsideBox,
+    /// For a Campbell diagram, the poles reported outside that box (a heavily damped mode whose
+    /// |decay_rate|, or a branch whose |frequency|, passes `max_frequency`), which the check does
+    /// not cover: each replaced by the full model's pole nearest it at its speed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub outside_box: Option<OutsideBox>,
 }
 
 /// The poles of a reduced sweep outside the box its reduction was checked in (see
