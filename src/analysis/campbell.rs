@@ -6,7 +6,6 @@ use super::control::Control;
 use super::criticals::{self, Critical};
 use super::poles::{self, Whirl};
 use super::reduction::{Reduction, reduce_for_sweep};
-use super::refine::{self, Full};
 use super::stability::{Threshold, sweep, threshold};
 use super::tracking::{Ambiguity, Tracker};
 use crate::damping::{DampedModel, ModelKind};
@@ -191,7 +190,7 @@ pub fn campbell_kept(
 }
 
 /// The speeds of the forward crossings that are not critically damped, ascending.
-fn forward_criticals(c: &[Critical]) -> Vec<f64> {
+pub fn forward_criticals(c: &[Critical]) -> Vec<f64> {
     let mut out: Vec<f64> = c
         .iter()
         .filter(|c| c.whirl == Whirl::Forward && !c.critically_damped())
@@ -221,11 +220,8 @@ pub fn campbell_below(
         None
     };
     match reduced {
-        Some((model, mut reduction)) => {
+        Some((model, reduction)) => {
             let mut r = campbell_kept(&model, speeds, keep, control)?;
-            let full = Full::of(system, damping, full);
-            reduction.outside = Some(refine::outside_box(&mut r, full, keep.below)?);
-            r.critical_speeds = forward_criticals(&r.criticals);
             r.reduction = Some(reduction);
             Ok(r)
         }
@@ -243,12 +239,9 @@ pub fn campbell_large(
     max_states: usize,
     control: &Control,
 ) -> Result<CampbellResult, AnalysisError> {
-    let (model, mut reduction) =
+    let (model, reduction) =
         super::large::reduce_for_sweep(system, damping, speeds, keep.below, max_states)?;
     let mut r = campbell_kept(&model, speeds, keep, control)?;
-    let full = Full::Sparse { system, damping };
-    reduction.outside = Some(refine::outside_box(&mut r, full, keep.below)?);
-    r.critical_speeds = forward_criticals(&r.criticals);
     r.reduction = Some(reduction);
     Ok(r)
 }

@@ -69,7 +69,21 @@ pub struct Reduction {
     pub sparse: bool,
     /// For a sweep, the poles it reported outside the checked box, refined on the full model
     /// ([`super::refine`]).
-    pub outside: Option<super::refine::Outside>,
+    pub outside: Option<Outside>,
+}
+
+/// What refining the poles outside the checked box did.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Outside {
+    /// Poles reported outside the box `|Re s|, |Im s| <= bound` (over every speed, and the
+    /// crossings' poles).
+    pub poles: usize,
+    /// Of those, replaced by the full model's eigenvalue nearest them.
+    pub refined: usize,
+    /// Of those, removed: no full-model eigenvalue within 25 % of them.
+    pub removed: usize,
+    /// Largest `|s_full - s_reduced| / |s_full|` of a refined pole.
+    pub largest_change: f64,
 }
 
 /// The reduced model for a sweep over `speeds` with poles wanted below `bound`, or `None` when

@@ -20,7 +20,8 @@
 use rayon::prelude::*;
 
 use super::AnalysisError;
-use super::campbell::{Branch, CampbellResult};
+use super::campbell::{Branch, CampbellResult, forward_criticals};
+use super::reduction::Outside;
 use crate::damping::hysteretic::SignedModel;
 use crate::damping::state::StateModel;
 use crate::damping::{DampedModel, DampingError, ModelKind, large};
@@ -69,27 +70,17 @@ impl<'a> Full<'a> {
     }
 }
 
-/// What refining the poles outside the checked box did.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct Outside {
-    /// Poles reported outside the box `|Re s|, |Im s| <= bound` (over every speed, and the
-    /// crossings' poles).
-    pub poles: usize,
-    /// Of those, replaced by the full model's eigenvalue nearest them.
-    pub refined: usize,
-    /// Of those, removed: no full-model eigenvalue within 25 % of them.
-    pub removed: usize,
-    /// Largest `|s_full - s_reduced| / |s_full|` of a refined pole.
-    pub largest_change: f64,
-}
-
 /// Refines every pole of `result`'s branches outside the box `|Re s|, |Im s| <= bound` on
-/// `full` (see the module docs).
+/// `full` (see the module docs), if it was solved on a reduction; counted in its
+/// `reduction.outside`.
 pub fn outside_box(
     result: &mut CampbellResult,
     full: Full,
     bound: f64,
-) -> Result<Outside, AnalysisError> {
+) -> Result<(), AnalysisError> {
+    if result.reduction.is_none() {
+        return Ok(());
+    }
     let outside = |s: &c64| s.re.abs() > bound || s.im.abs() > bound;
     let lists = [&result.branches, &result.overdamped];
     let work: Vec<(usize, Vec<Reported>)> = (0..result.speeds.len())
@@ -165,7 +156,11 @@ pub fn outside_box(
         }
     }
     result.criticals.sort_by(|a, b| a.speed.total_cmp(&b.speed));
-    Ok(out)
+    result.critical_speeds = forward_criticals(&result.criticals);
+    if let Some(r) = result.reduction.as_mut() {
+        r.outside = Some(out);
+    }
+    Ok(())
 }
 
 /// Secant steps allowed to close a crossing on the full model.

@@ -18,6 +18,7 @@ use super::control::Control;
 use super::criticals::Critical;
 use super::modal::{self, ModalResult};
 use super::poles::Whirl;
+use super::refine;
 use super::response::{self, ResponseReduction};
 use super::stability::{self, Threshold};
 use super::time::{self, TimeError, TimeResult};
@@ -198,7 +199,14 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                     *max_states,
                     control,
                 );
-                return match r {
+                return match r.and_then(|mut r| {
+                    let full = refine::Full::Sparse {
+                        system: &system,
+                        damping: &model.damping,
+                    };
+                    refine::outside_box(&mut r, full, *max_frequency)?;
+                    Ok(r)
+                }) {
                     Ok(r) => Ok(Outcome::Campbell(r)),
                     Err(AnalysisError::Damping(e)) => Err(damping_error(e, &model.rotor)),
                     Err(e) => Err(e.into()),
@@ -214,7 +222,7 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                 below: bound,
                 lowest: *modes,
             };
-            let r = campbell::campbell_below(
+            let mut r = campbell::campbell_below(
                 &system,
                 &model.damping,
                 &damped,
@@ -223,6 +231,9 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                 *reduce,
                 control,
             )?;
+            // The poles the reduction's check did not cover, on the full model.
+            let full = refine::Full::of(&system, &model.damping, &damped);
+            refine::outside_box(&mut r, full, bound)?;
             Ok(Outcome::Campbell(r))
         }
         TaskKind::Stability { model, speeds } => {
