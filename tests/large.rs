@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::{floats, post_json, stepped_rotor};
+use common::{campbell_poles, floats, post_json, stepped_rotor};
 use serde_json::{Value, json};
 use whirl::linalg::c64;
 
@@ -19,21 +19,6 @@ fn cross_coupled() -> Value {
 /// Isotropic stiff bearings with heavy damping (single coordinates).
 fn isotropic_heavy() -> Value {
     json!({"stiffness": 5.0e7, "damping": 4.0e4})
-}
-
-/// The poles of a Campbell answer at speed index `i`: its branches' and its overdamped ones.
-fn branch_poles(camp: &Value, i: usize) -> Vec<c64> {
-    let branches = camp["branches"].as_array().unwrap().iter();
-    branches
-        .chain(camp["overdamped"].as_array().into_iter().flatten())
-        .filter(|b| !b["frequency"][i].is_null())
-        .map(|b| {
-            c64::new(
-                b["decay_rate"][i].as_f64().unwrap(),
-                b["frequency"][i].as_f64().unwrap(),
-            )
-        })
-        .collect()
 }
 
 /// Largest distance from a pole of `from` in the box `|Re s|, |Im s| <= bound` to the nearest
@@ -90,7 +75,7 @@ async fn against_modal(rotor: Value, damping: &str) -> (Value, f64) {
                 )
             })
             .collect();
-        let reported = branch_poles(&camp, i);
+        let reported = campbell_poles(&camp, i);
         let (a, b) = (
             worst(&reported, &dense, bound),
             worst(&dense, &reported, bound),
@@ -175,7 +160,7 @@ async fn sixteen_hundred_elements_answer_within_the_default_limits() {
                "speeds": {"start": 0.0, "stop": 2000.0, "count": 10}})
     };
     let lowest = |camp: &Value| -> Vec<f64> {
-        let mut f: Vec<f64> = branch_poles(camp, 0).iter().map(|s| s.im.abs()).collect();
+        let mut f: Vec<f64> = campbell_poles(camp, 0).iter().map(|s| s.im.abs()).collect();
         f.sort_by(f64::total_cmp);
         f
     };

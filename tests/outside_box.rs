@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::{floats, post_json};
+use common::{campbell_poles, floats, post_json};
 use serde_json::{Value, json};
 use whirl::linalg::c64;
 
@@ -62,21 +62,6 @@ fn poles(list: &Value) -> Vec<c64> {
         .collect()
 }
 
-/// Every pole of a Campbell answer at speed index `i`.
-fn reported(camp: &Value, i: usize) -> Vec<c64> {
-    let branches = camp["branches"].as_array().unwrap().iter();
-    branches
-        .chain(camp["overdamped"].as_array().into_iter().flatten())
-        .filter(|b| !b["frequency"][i].is_null())
-        .map(|b| {
-            c64::new(
-                b["decay_rate"][i].as_f64().unwrap(),
-                b["frequency"][i].as_f64().unwrap(),
-            )
-        })
-        .collect()
-}
-
 /// The Campbell diagram of `rotor` under `damping` (20 speeds up to 1.5 w1, bound 1.3 w3, as
 /// the benchmark), every reported pole against `/v1/modal` at the first, middle and last speed.
 /// Returns the answer's `reduction`.
@@ -105,7 +90,7 @@ async fn every_pole_against_modal(rotor: Value, damping: &str) -> Value {
         .await;
         assert_eq!(status, 200, "{modal}");
         let dense = poles(&modal["poles"]);
-        for s in reported(&camp, i) {
+        for s in campbell_poles(&camp, i) {
             let off = dense
                 .iter()
                 .map(|t| (s - t).norm())

@@ -137,3 +137,18 @@ pub fn heldout(i: usize, loss: f64) -> serde_json::Value {
     v["materials"]["steel"]["loss_factor"] = serde_json::json!(loss);
     v
 }
+
+/// Every pole of a Campbell answer at speed index `i`: its branches' and its overdamped ones.
+pub fn campbell_poles(camp: &serde_json::Value, i: usize) -> Vec<whirl::linalg::c64> {
+    let branches = camp["branches"].as_array().unwrap().iter();
+    branches
+        .chain(camp["overdamped"].as_array().into_iter().flatten())
+        .filter(|b| !b["frequency"][i].is_null())
+        .map(|b| {
+            whirl::linalg::c64::new(
+                b["decay_rate"][i].as_f64().unwrap(),
+                b["frequency"][i].as_f64().unwrap(),
+            )
+        })
+        .collect()
+}
