@@ -59,7 +59,14 @@ pub fn reduce_for_sweep(
         bound,
         criterion: Criterion::Relative(TOLERANCE),
     };
-    match reduce(system, damping, lowest(system, 4)?, &check, &[], max_states)? {
+    match reduce(
+        system,
+        damping,
+        lowest(system, 4, bound)?,
+        &check,
+        &[],
+        max_states,
+    )? {
         Some(r) => Ok((r.model, r.info)),
         None => Err(not_reduced(2 * full_size(system), max_states)),
     }
@@ -73,10 +80,13 @@ pub struct Check {
     pub criterion: Criterion,
 }
 
-/// At least the lowest `count` undamped modes, by Lanczos.
-pub fn lowest(system: &RotorSystem, count: usize) -> Result<ModalBasis, AnalysisError> {
-    ModalBasis::lowest(system, |w2| w2.len() >= count)
-        .map_err(|e| AnalysisError::Damping(DampingError::Modal(e)))
+/// At least the lowest `count` undamped modes by Lanczos, and every one with `w <= 2 bound` and
+/// the first past it (`bound` 0: the lowest `count`).
+pub fn lowest(system: &RotorSystem, count: usize, bound: f64) -> Result<ModalBasis, AnalysisError> {
+    ModalBasis::lowest(system, |w2| {
+        w2.len() >= count && w2.last().is_some_and(|&l| l.sqrt() > 2.0 * bound)
+    })
+    .map_err(|e| AnalysisError::Damping(DampingError::Modal(e)))
 }
 
 /// The sparse counterpart of [`super::reduction::reduce_checked`]: from `basis` (the lowest
@@ -96,15 +106,9 @@ pub fn reduce(
     let full_states = 2 * full_size(system);
     let loads = with_supports(system, loads);
     let band = |w: f64| w <= 2.0 * bound;
-    let lowest = |count: usize| {
-        ModalBasis::lowest(system, |w2| {
-            w2.len() >= count && w2.last().is_some_and(|&l| !band(l.sqrt()))
-        })
-        .map_err(|e| AnalysisError::Damping(DampingError::Modal(e)))
-    };
-    // Every mode in the band, and one past it.
+    // Every mode in the band, and one past it (a run-up's basis was found before its band).
     if basis.omega.last().is_none_or(|&w| band(w)) {
-        basis = lowest(basis.len() + 1)?;
+        basis = lowest(system, basis.len() + 1, bound)?;
     }
     let mut m = basis.omega.iter().filter(|&&w| band(w)).count().max(4);
     let exact = checked
@@ -116,7 +120,7 @@ pub fn reduce(
     };
     loop {
         if basis.len() < m + 1 {
-            basis = lowest(m + 1)?;
+            basis = lowest(system, m + 1, bound)?;
         }
         let sub = basis
             .augmented_with(system, m, &loads)

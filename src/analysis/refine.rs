@@ -22,8 +22,6 @@ use rayon::prelude::*;
 use super::AnalysisError;
 use super::campbell::{Branch, CampbellResult, forward_criticals};
 use super::reduction::Outside;
-use crate::damping::hysteretic::SignedModel;
-use crate::damping::state::StateModel;
 use crate::damping::{DampedModel, DampingError, ModelKind, large};
 use crate::linalg::{LinalgError, arnoldi, c64};
 use crate::model::damping::DampingModel;
@@ -133,10 +131,13 @@ pub fn outside_box(
         drop_empty(result);
     }
     // The crossings with the 1x line whose pole is outside the box, closed on the full model.
-    let hysteretic = match full {
-        Full::Sparse { damping, .. } => matches!(damping, DampingModel::Hysteretic),
-        Full::Dense(m) => matches!(m.kind, ModelKind::Hysteretic(_)),
-    };
+    let hysteretic = matches!(
+        full,
+        Full::Sparse {
+            damping: DampingModel::Hysteretic,
+            ..
+        }
+    );
     let moved: Vec<Option<(f64, c64)>> = result
         .criticals
         .par_iter()
@@ -247,36 +248,30 @@ fn refine_at(full: Full, speed: f64, poles: &[c64]) -> Result<Vec<Found>, Analys
                 })
                 .collect()
         }
-        Full::Dense(model) => poles
-            .iter()
-            .map(|&s| {
-                let mut searches = vec![];
-                let models: Vec<(&StateModel, Option<&SignedModel>)> = match &model.kind {
-                    ModelKind::Linear(m) => vec![(&**m, None)],
-                    ModelKind::Hysteretic(signed) => signed
-                        .iter()
-                        .filter(|sm| sm.consistent(s, speed))
-                        .map(|sm| (&sm.model, Some(sm)))
-                        .collect(),
-                };
-                for (m, signed) in models {
+        Full::Dense(model) => {
+            // The hysteretic model is refined sparse ([`Full::of`]).
+            let ModelKind::Linear(m) = &model.kind else {
+                return Ok(poles.iter().map(|_| Found::Unsettled).collect());
+            };
+            let n = m.n();
+            poles
+                .iter()
+                .map(|&s| {
                     let op = m.shift_invert(speed, s);
-                    let n = m.n();
-                    searches.push(search(
+                    let found = search(
                         m.size(),
                         |b| op.solve(b),
                         s,
-                        |t, z| {
-                            signed.is_none_or(|sm| sm.consistent(t, speed))
-                                && (m.p() == 0
-                                    || m.rotor_energy_fraction(&z[n..2 * n], &z[2 * n..])
-                                        >= ROTOR_FRACTION)
+                        |_, z| {
+                            m.p() == 0
+                                || m.rotor_energy_fraction(&z[n..2 * n], &z[2 * n..])
+                                    >= ROTOR_FRACTION
                         },
-                    )?);
-                }
-                Ok(settle(s, searches))
-            })
-            .collect(),
+                    )?;
+                    Ok(settle(s, vec![found]))
+                })
+                .collect()
+        }
     }
 }
 

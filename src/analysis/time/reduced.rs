@@ -92,7 +92,7 @@ pub fn solve_sparse(
         return Ok(None);
     }
     // A rotor the Lanczos basis refuses is refused by the dense path too, with its message.
-    let Ok(basis) = large::lowest(system, 4) else {
+    let Ok(basis) = large::lowest(system, 4, 0.0) else {
         return Ok(None);
     };
     let first = basis.omega.first().copied().unwrap_or(0.0);
