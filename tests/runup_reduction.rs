@@ -131,7 +131,7 @@ fn compare(name: &str, system: &RotorSystem, model: &str, node: usize) {
     // sparse factors): the same reduction, so the same response to round-off of the basis.
     if model == "viscous" {
         let sparse = reduced::solve_sparse(system, &damping, &spec, true, &control).unwrap();
-        if info.full_states < reduced::SPARSE_FROM_STATES {
+        if info.full_states < whirl::analysis::large::SPARSE_FROM_STATES {
             assert!(sparse.is_none(), "{name}: {info:?}");
             return;
         }

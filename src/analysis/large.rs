@@ -29,6 +29,11 @@ use crate::model::damping::DampingModel;
 use crate::model::limits::SPARSE_ARNOLDI;
 use crate::system::{Layout, RotorSystem};
 
+/// Full states from which a run-up or a Level I screen reduces without its dense full model:
+/// below, the dense model costs little and the check's Krylov space (at most half the state)
+/// has no room (a Jeffcott rotor's Lanczos run does not converge).
+pub const SPARSE_FROM_STATES: usize = 100;
+
 /// Coordinates `N` of the full second-order model.
 pub fn full_size(system: &RotorSystem) -> usize {
     match system.layout() {
@@ -161,6 +166,26 @@ pub fn reduce(
         }
         m = (3 * m).div_ceil(2);
     }
+}
+
+/// [`super::reduction::band_error`] for a full model held sparse: the largest relative distance
+/// between the poles of `system` and of `reduced` at `speed`, both ways, over those in the box
+/// `|Re s|, |Im s| <= bound`.
+pub fn band_error(
+    system: &RotorSystem,
+    damping: &DampingModel,
+    reduced: &DampedModel,
+    speed: f64,
+    bound: f64,
+) -> Result<f64, AnalysisError> {
+    let exact = full_poles(system, damping, speed, 1.5 * bound)?;
+    let approx = compared_at(reduced, speed)?;
+    Ok(both_ways(
+        &exact,
+        &approx,
+        bound,
+        Criterion::Relative(TOLERANCE),
+    ))
 }
 
 /// Every pole of the full model at `speed` within `radius` of the origin (for the hysteretic

@@ -16,11 +16,17 @@
 //! round (eigenvalues only, so one full solve without shapes), and the full model is solved
 //! instead if any differs there by more than [`CHECK`] relative.
 //!
+//! For the viscous and hysteretic models of 100 states or more no dense matrix of the rotor's
+//! size is formed: the modes by Lanczos, the reduction and both checks through sparse factors
+//! of `Z(s)` ([`large::reduce`], [`large::band_error`]). On the cross-coupled 113-element rotor
+//! of `benches/forced_ross.py` the dense full model's two builds and checks took 185 of 245 ms.
+//!
 //! [`reduction::reduce`]: crate::analysis::reduction::reduce
 
 use super::level1::{self, FirstForward, Level1, Placing, auto_range_of, coupled, level1_of};
 use crate::analysis::AnalysisError;
 use crate::analysis::control::Control;
+use crate::analysis::large;
 use crate::analysis::reduction::{self, Criterion, TOLERANCE};
 use crate::damping::DampedModel;
 use crate::model::damping::DampingModel;
@@ -95,32 +101,47 @@ pub fn level1_reduced(
     if !reduce {
         return whole();
     }
-    let full = DampedModel::build(system, damping)?;
     let whole_at: Vec<(Placement, usize, f64)> = at
         .iter()
         .map(|&(d, w)| (Placement::Dof(d), system.dofs[d].node, w))
         .collect();
+    // The viscous and hysteretic models reduce and check through sparse factors (no dense
+    // matrix of the rotor's size); the models built on a modal basis on the dense full model.
+    let sparse = matches!(damping, DampingModel::Viscous | DampingModel::Hysteretic)
+        && 2 * large::full_size(system) >= large::SPARSE_FROM_STATES;
+    // A rotor the Lanczos run refuses goes to the dense path, which names what is wrong.
+    let lowest = if sparse {
+        large::lowest(system, 2, 0.0).ok()
+    } else {
+        None
+    };
+    let full = match lowest {
+        Some(_) => None,
+        None => Some(DampedModel::build(system, damping)?),
+    };
+    let omega = match (&full, &lowest) {
+        (Some(f), _) => &f.basis.omega,
+        (None, l) => &l.as_ref().expect("sparse: Lanczos basis").omega,
+    };
     // The band: from the second mode at rest (the first forward mode is rarely above it),
     // widened to twice the first forward mode's modulus if it is not.
-    let mut bound = full
-        .basis
-        .omega
-        .get(1)
-        .copied()
-        .unwrap_or(full.basis.omega[0])
-        .max(speed.abs());
+    let mut bound = omega.get(1).copied().unwrap_or(omega[0]).max(speed.abs());
     for _ in 0..4 {
         control.check()?;
-        let Some(red) = reduction::reduce(
-            system,
-            damping,
-            &full,
-            speed,
-            bound,
-            &dofs,
-            Criterion::Relative(TOLERANCE),
-        )?
-        else {
+        let criterion = Criterion::Relative(TOLERANCE);
+        let red = match (&full, &lowest) {
+            (Some(f), _) => reduction::reduce(system, damping, f, speed, bound, &dofs, criterion)?,
+            (None, l) => {
+                let check = large::Check {
+                    speeds: vec![speed],
+                    bound,
+                    criterion,
+                };
+                let basis = l.clone().expect("sparse: Lanczos basis");
+                large::reduce(system, damping, basis, &check, &dofs, usize::MAX)?
+            }
+        };
+        let Some(red) = red else {
             break;
         };
         let placed: Vec<(Placement, usize, f64)> = at
@@ -145,9 +166,14 @@ pub fn level1_reduced(
         // cross-coupling solved, where it has moved the poles furthest from where the
         // reduction was checked. Eigenvalues only: one full solve, no shapes.
         let q = result.q0.unwrap_or(qs.iter().copied().fold(0.0, f64::max));
-        let exact = DampedModel::build(&coupled(system, &whole_at, q), damping)?;
         let approx = DampedModel::build(&coupled(&red.system, &placed, q), damping)?;
-        let error = reduction::band_error(&exact, &approx, speed, bound)?;
+        let exact = coupled(system, &whole_at, q);
+        let error = match &full {
+            Some(_) => {
+                reduction::band_error(&DampedModel::build(&exact, damping)?, &approx, speed, bound)?
+            }
+            None => large::band_error(&exact, damping, &approx, speed, bound)?,
+        };
         if error > CHECK {
             break;
         }

@@ -70,10 +70,6 @@ pub fn solve(
     Ok((time_response(system, full, spec, false, control)?, None))
 }
 
-/// Full states from which a run-up reduces without its dense full model: below, the dense
-/// model costs little and the check's Krylov space (at most half the state) has no room.
-pub const SPARSE_FROM_STATES: usize = 100;
-
 /// [`solve`]'s reduction without the dense full model: for the viscous and hysteretic models,
 /// the lowest modes by Lanczos and the check through sparse factors ([`large::reduce`]), so a
 /// run-up costs no dense matrix of the rotor's size (on a 113-element cross-coupled rotor the
@@ -87,7 +83,7 @@ pub fn solve_sparse(
     control: &Control,
 ) -> Result<Option<(TimeResult, Reduction)>, TimeError> {
     let sparse = matches!(damping, DampingModel::Viscous | DampingModel::Hysteretic)
-        && 2 * large::full_size(system) >= SPARSE_FROM_STATES;
+        && 2 * large::full_size(system) >= large::SPARSE_FROM_STATES;
     if !(allow && sparse && spec.speed.constant().is_none()) {
         return Ok(None);
     }
