@@ -194,12 +194,10 @@ impl Sparse {
         }
     }
 
-    /// `V^T A V`, through the dense form up to [`DENSE_UP_TO`].
+    /// `V^T A V`, by the sparse product `A V` (through the dense form, forming `A` costs more
+    /// than the product: a reduction projects nine matrices).
     pub fn project(&self, v: &RMat) -> RMat {
-        match self.nrows.max(self.ncols) <= DENSE_UP_TO {
-            true => v.transpose() * self.to_dense() * v,
-            false => v.transpose() * self.mul(v),
-        }
+        v.transpose() * self.mul(v)
     }
 
     /// `A^-1 B` for a symmetric `A`: dense LU up to [`DENSE_UP_TO`], else a sparse Cholesky

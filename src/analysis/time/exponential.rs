@@ -21,15 +21,21 @@
 //! `w1 = e^z w + h [(phi1 - 3 phi2 + 4 phi3) N_w + (2 phi2 - 4 phi3) (N_a + N_b)
 //! + (4 phi3 - phi2) N_c]`. Fourth order for the loads; exact for loads linear in time.
 //!
+//! In doubled coordinates (supports that are anisotropic or cross-coupled) a real motion's
+//! modal coordinates pair as complex conjugates: the stage's eigenproblem is solved in real
+//! form and one of each pair is integrated, the drift's product in real arithmetic
+//! ([`super::conjugate`]; half the work of the complex state, to round-off the same answer).
+//!
 //! Steps land on every output time and on every breakpoint of the loads, of the speed law and
 //! of the supports' table; stages end on those breakpoints. The step is
 //! `h <= theta / max |Omega|` with `theta` from the tolerance (see [`step_bound`]).
 
+use super::conjugate::{Halves, Pairing};
 use super::{Forcing, Method, TimeError, TimeResult, TimeSpec};
 use crate::analysis::control::Control;
 use crate::damping::schedule::ModalSchedule;
 use crate::damping::state::StateModel;
-use crate::linalg::{self, CMat, c64};
+use crate::linalg::{self, CMat, RMat, c64};
 
 /// `phi_k(z) = sum_j z^j / (j + k)!` for k = 1, 2, 3 (`phi_0 = e^z`).
 fn phis(z: c64) -> [c64; 3] {
@@ -98,57 +104,100 @@ pub fn step_bound(tol: f64, w: f64) -> f64 {
     crate::model::loads::step_angle(tol) / w.max(f64::MIN_POSITIVE)
 }
 
-/// `V^-1 F V` for the drift of the speed, applied as `y += f (V^-1 F V) x`: whole, or as the
+/// `V^-1 F V` for the drift of the speed, applied as `y += f (V^-1 F V) x`: whole, as the
 /// product of two thin factors where `F` has few rows that are not zero (the velocity rows of
-/// a viscous model; the internal rows of a nonviscous one also turn with the speed).
-struct Coupling {
-    /// `r x m`: `F`'s rows times `V`, or the whole `V^-1 F V` (`left` absent).
-    right: CMat,
-    /// `m x r`: the columns of `V^-1` at those rows.
-    left: Option<CMat>,
+/// a viscous model; the internal rows of a nonviscous one also turn with the speed), or, where
+/// one of each conjugate pair is kept, in real arithmetic: with `w = u + i v` the kept
+/// coordinates, `C_a w + C_b conj w = (C_a + C_b) u + i (C_a - C_b) v`, one real product of
+/// twice the kept size (half the work of the complex product with every coordinate).
+enum Coupling {
+    Whole(CMat),
+    /// `right`: `F`'s rows times `V` (`r x m`); `left`: the kept rows of `V^-1` at those rows.
+    Thin {
+        right: CMat,
+        left: CMat,
+    },
+    /// `[Re y; Im y] = [[Re P, -Im Q], [Im P, Re Q]] [u; v]`.
+    Paired(RMat),
+}
+
+/// Room for the products of [`Coupling::add_apply`].
+#[derive(Default)]
+struct Scratch {
+    c: Vec<c64>,
+    x: Vec<f64>,
+    y: Vec<f64>,
 }
 
 impl Coupling {
-    fn new(vinv: &CMat, f: &CMat, v: &CMat) -> Self {
-        let m = f.nrows();
+    /// From `V^-1` (the kept rows), `F`, `V` and the kept coordinates.
+    fn new(vinv: &CMat, f: &CMat, v: &CMat, halves: &Halves) -> Self {
+        let (h, m) = (vinv.nrows(), f.nrows());
         let rows: Vec<usize> = (0..m)
             .filter(|&i| (0..m).any(|j| f[(i, j)] != c64::new(0.0, 0.0)))
             .collect();
         let f_rows = CMat::from_fn(rows.len(), m, |k, j| f[(rows[k], j)]);
         let fv = &f_rows * v;
-        let left = CMat::from_fn(m, rows.len(), |i, k| vinv[(i, rows[k])]);
-        if 2 * rows.len() < m {
-            Coupling {
-                right: fv,
-                left: Some(left),
+        let left = CMat::from_fn(h, rows.len(), |i, k| vinv[(i, rows[k])]);
+        if h < m {
+            let whole = &left * &fv;
+            let (mut p, mut q) = (CMat::zeros(h, h), CMat::zeros(h, h));
+            for (j, &(k, conj)) in halves.full.iter().enumerate() {
+                let sign = if conj { -1.0 } else { 1.0 };
+                for i in 0..h {
+                    p[(i, k)] += whole[(i, j)];
+                    q[(i, k)] += whole[(i, j)] * sign;
+                }
             }
+            Coupling::Paired(RMat::from_fn(2 * h, 2 * h, |i, j| match (i < h, j < h) {
+                (true, true) => p[(i, j)].re,
+                (true, false) => -q[(i, j - h)].im,
+                (false, true) => p[(i - h, j)].im,
+                (false, false) => q[(i - h, j - h)].re,
+            }))
+        } else if rows.len() * (m + h) < h * m {
+            Coupling::Thin { right: fv, left }
         } else {
-            Coupling {
-                right: &left * &fv,
-                left: None,
-            }
+            Coupling::Whole(&left * &fv)
         }
     }
 
-    fn add_apply(&self, x: &[c64], f: f64, y: &mut [c64], tmp: &mut Vec<c64>) {
-        let f = c64::new(f, 0.0);
-        match &self.left {
-            None => linalg::add_matvec(y, &self.right, x, f),
-            Some(left) => {
-                tmp.clear();
-                tmp.resize(self.right.nrows(), c64::new(0.0, 0.0));
-                linalg::add_matvec(tmp, &self.right, x, f);
-                linalg::add_matvec(y, left, tmp, c64::new(1.0, 0.0));
+    /// `y += f C x`, `w` the kept coordinates and `full` all of them.
+    fn add_apply(&self, w: &[c64], full: &[c64], f: f64, y: &mut [c64], s: &mut Scratch) {
+        let fc = c64::new(f, 0.0);
+        match self {
+            Coupling::Whole(c) => linalg::add_matvec(y, c, full, fc),
+            Coupling::Thin { right, left } => {
+                s.c.clear();
+                s.c.resize(right.nrows(), c64::new(0.0, 0.0));
+                linalg::add_matvec(&mut s.c, right, full, fc);
+                linalg::add_matvec(y, left, &s.c, c64::new(1.0, 0.0));
+            }
+            Coupling::Paired(r) => {
+                let h = w.len();
+                s.x.clear();
+                s.x.extend(w.iter().map(|z| z.re));
+                s.x.extend(w.iter().map(|z| z.im));
+                s.y.clear();
+                s.y.resize(2 * h, 0.0);
+                linalg::add_matvec_real(&mut s.y, r, &s.x, f);
+                for (i, yi) in y.iter_mut().enumerate() {
+                    *yi += c64::new(s.y[i], s.y[h + i]);
+                }
             }
         }
     }
 }
 
-/// One stage: the modal form of `A_k` and everything `N` needs in it.
+/// One stage: the modal form of `A_k` and everything `N` needs in it, for the modal
+/// coordinates integrated (`halves`: all, or one of each conjugate pair in doubled coordinates).
 struct Stage<'a> {
     omega: f64,
+    /// The eigenvalues of the kept coordinates.
     lambda: Vec<c64>,
+    halves: Halves,
     v: CMat,
+    /// The kept rows of `V^-1`.
     vinv: CMat,
     f1: Coupling,
     f2: Option<Coupling>,
@@ -166,11 +215,15 @@ impl<'a> Stage<'a> {
         omega: f64,
         columns: &[Vec<c64>],
         out: &[Vec<(usize, f64)>],
+        pairing: Option<&Pairing>,
     ) -> Result<Self, TimeError> {
         let (f1, f2) = state.speed_terms(omega);
         let size = state.size();
         let a = state.at(omega);
-        let e = linalg::eigen(&a)?;
+        let (e, halves) = match pairing.and_then(|p| p.eigen(&a)) {
+            Some(r) => r?,
+            None => (linalg::eigen(&a)?, Halves::all(size)),
+        };
         let identity = CMat::from_fn(size, size, |i, j| {
             c64::new(if i == j { 1.0 } else { 0.0 }, 0.0)
         });
@@ -179,13 +232,19 @@ impl<'a> Stage<'a> {
         let g = &vinv * &b;
         super::check_modal(&e.vectors, &g, &b)?;
         let rows = super::output_rows(&e.vectors, out, state.n());
+        let kept = &halves.kept;
+        let vinv = CMat::from_fn(kept.len(), size, |k, j| vinv[(kept[k], j)]);
+        let g = CMat::from_fn(kept.len(), g.ncols(), |k, j| g[(kept[k], j)]);
         Ok(Stage {
             omega,
-            f1: Coupling::new(&vinv, &f1, &e.vectors),
-            f2: f2.as_ref().map(|f| Coupling::new(&vinv, f, &e.vectors)),
+            f1: Coupling::new(&vinv, &f1, &e.vectors, &halves),
+            f2: f2
+                .as_ref()
+                .map(|f| Coupling::new(&vinv, f, &e.vectors, &halves)),
             scheduled: state.schedule().map(|s| s.modal(&vinv, &e.vectors, omega)),
             g,
-            lambda: e.values,
+            lambda: kept.iter().map(|&j| e.values[j]).collect(),
+            halves,
             v: e.vectors,
             vinv,
             rows,
@@ -199,6 +258,7 @@ pub fn solve(
     forcing: &Forcing,
     spec: &TimeSpec,
     out: &[Vec<(usize, f64)>],
+    pairing: Option<&Pairing>,
     control: &Control,
 ) -> Result<TimeResult, TimeError> {
     let size = state.size();
@@ -220,13 +280,15 @@ pub fn solve(
     // A stage: at most this many steps (its eigensolve costs a few steps' work per state),
     // and a speed drift of at most 5% of the fastest speed where the supports change with the
     // speed (their change rides in `N`: at 20% a run-up on ROSS's interpolated fluid-film
-    // tables moved 3.7e-6 of its peak against 7.9e-7 at 5%), 20% where only the gyroscopic
-    // and rotating-damping terms do (Example 1's nonviscous run-up 2.6e-7 either way, in a
-    // quarter of the eigensolves; `tests/exponential.rs`). Output intervals longer than that
-    // are cut, so that stages can end inside them.
+    // tables moved 3.7e-6 of its peak against 7.9e-7 at 5%), 50% where only the gyroscopic
+    // and rotating-damping terms do: `h |dOmega| |G| / |M|` stays below the step angle, and
+    // three run-ups of `benches/forced_ross.py`'s rotors moved 4.8e-8, 4.1e-9 and 2.3e-9 of
+    // their peaks from the 5% stages (4.8e-8, 4.1e-9, 5.6e-10 at 20%; Example 1's nonviscous
+    // run-up 2.6e-7 at 20% or 5%, `tests/exponential.rs`). Output intervals longer than that are cut, so that stages can
+    // end inside them.
     let steps_per_stage = 16 * size.max(8);
     let constant = state.schedule().is_none() && state.table_speeds().is_empty();
-    let drift = if constant { 0.2 } else { 0.05 } * lo.abs().max(hi.abs());
+    let drift = if constant { 0.5 } else { 0.05 } * lo.abs().max(hi.abs());
     let grid = refine(
         &grid,
         |t| sp.omega(t),
@@ -241,8 +303,16 @@ pub fn solve(
     let mut z = vec![c64::new(0.0, 0.0); size];
     let mut steps = 0usize;
     let mut coefficients: Vec<(f64, Coefficients)> = vec![];
-    let mut c = vec![c64::new(0.0, 0.0); columns.cols.len()];
-    let mut tmp = vec![];
+    let zeros = |len: usize| vec![c64::new(0.0, 0.0); len];
+    let (mut c0, mut cm, mut c1) = (
+        zeros(columns.cols.len()),
+        zeros(columns.cols.len()),
+        zeros(columns.cols.len()),
+    );
+    let (mut nw, mut na, mut nb, mut nc) = (vec![], vec![], vec![], vec![]);
+    let (mut a, mut b, mut cc) = (vec![], vec![], vec![]);
+    let mut full = zeros(size);
+    let mut tmp = Scratch::default();
     let mut g0 = 0;
     while g0 + 1 < grid.len() {
         control.check()?;
@@ -258,31 +328,39 @@ pub fn solve(
             count += substeps(grid[g1 + 1].0 - grid[g1].0, h_max);
             g1 += 1;
         }
-        let stage = Stage::new(state, sp.omega(0.5 * (t0 + grid[g1].0)), &columns.cols, out)?;
+        let omega = sp.omega(0.5 * (t0 + grid[g1].0));
+        let stage = Stage::new(state, omega, &columns.cols, out, pairing)?;
         coefficients.clear();
-        let mut w: Vec<c64> = (0..size)
+        // The kept modal coordinates (all, or one of each conjugate pair).
+        let kept = stage.lambda.len();
+        for buffer in [&mut nw, &mut na, &mut nb, &mut nc, &mut a, &mut b, &mut cc] {
+            buffer.clear();
+            buffer.resize(kept, c64::new(0.0, 0.0));
+        }
+        let mut w: Vec<c64> = (0..kept)
             .map(|i| (0..size).map(|j| stage.vinv[(i, j)] * z[j]).sum())
             .collect();
-        let n_of = |w: &[c64], t: f64, left: bool, c: &mut Vec<c64>, tmp: &mut Vec<c64>| {
-            let mut y = vec![c64::new(0.0, 0.0); size];
-            let om = sp.omega(t);
-            stage.f1.add_apply(w, om - stage.omega, &mut y, tmp);
-            if let Some(s) = &stage.scheduled {
-                s.add_apply(om, w, &mut y);
-            }
-            if let Some(f2) = &stage.f2 {
-                f2.add_apply(w, om * om - stage.omega * stage.omega, &mut y, tmp);
-            }
-            forcing.coefficients(&columns, t, left, c);
-            for (j, &cj) in c.iter().enumerate() {
-                if cj != c64::new(0.0, 0.0) {
-                    for (i, yi) in y.iter_mut().enumerate() {
-                        *yi += stage.g[(i, j)] * cj;
+        // `N(w)` at speed `om` with the loads' coefficients `c`, into `y` (`full`: room for
+        // the full modal coordinates).
+        let n_into =
+            |w: &[c64], om: f64, c: &[c64], y: &mut [c64], tmp: &mut Scratch, full: &mut [c64]| {
+                y.fill(c64::new(0.0, 0.0));
+                stage.halves.expand(w, full);
+                stage.f1.add_apply(w, full, om - stage.omega, y, tmp);
+                if let Some(s) = &stage.scheduled {
+                    s.add_apply(om, full, y);
+                }
+                if let Some(f2) = &stage.f2 {
+                    f2.add_apply(w, full, om * om - stage.omega * stage.omega, y, tmp);
+                }
+                for (j, &cj) in c.iter().enumerate() {
+                    if cj != c64::new(0.0, 0.0) {
+                        for (yi, gi) in y.iter_mut().zip(stage.g.col(j).iter()) {
+                            *yi += gi * cj;
+                        }
                     }
                 }
-            }
-            y
-        };
+            };
         for g in g0..g1 {
             let (ta, tb) = (grid[g].0, grid[g + 1].0);
             let k = substeps(tb - ta, h_max);
@@ -300,30 +378,43 @@ pub fn solve(
                 }
             };
             let co = &coefficients[at].1;
+            // The loads at the step's start: those at the last step's end (from the right).
+            let mut c0_at = f64::NAN;
             for j in 0..k {
                 let t = ta + j as f64 * h;
                 let last = j + 1 == k;
                 let t1 = if last { tb } else { t + h };
                 // At the end of a step landing on a jump, the loads from the left.
                 let left = last && grid[g + 1].1;
-                let nw = n_of(&w, t, false, &mut c, &mut tmp);
-                let a: Vec<c64> = (0..size)
-                    .map(|i| co.e_half[i] * w[i] + co.p_half[i] * nw[i])
-                    .collect();
-                let na = n_of(&a, t + 0.5 * h, false, &mut c, &mut tmp);
-                let b: Vec<c64> = (0..size)
-                    .map(|i| co.e_half[i] * w[i] + co.p_half[i] * na[i])
-                    .collect();
-                let nb = n_of(&b, t + 0.5 * h, false, &mut c, &mut tmp);
-                let cc: Vec<c64> = (0..size)
-                    .map(|i| co.e_half[i] * a[i] + co.p_half[i] * (nb[i] * 2.0 - nw[i]))
-                    .collect();
-                let nc = n_of(&cc, t1, left, &mut c, &mut tmp);
-                for i in 0..size {
+                if c0_at != t {
+                    forcing.coefficients(&columns, t, false, &mut c0);
+                }
+                let tm = t + 0.5 * h;
+                forcing.coefficients(&columns, tm, false, &mut cm);
+                forcing.coefficients(&columns, t1, left, &mut c1);
+                let (om0, omm, om1) = (sp.omega(t), sp.omega(tm), sp.omega(t1));
+                n_into(&w, om0, &c0, &mut nw, &mut tmp, &mut full);
+                for i in 0..kept {
+                    a[i] = co.e_half[i] * w[i] + co.p_half[i] * nw[i];
+                }
+                n_into(&a, omm, &cm, &mut na, &mut tmp, &mut full);
+                for i in 0..kept {
+                    b[i] = co.e_half[i] * w[i] + co.p_half[i] * na[i];
+                }
+                n_into(&b, omm, &cm, &mut nb, &mut tmp, &mut full);
+                for i in 0..kept {
+                    cc[i] = co.e_half[i] * a[i] + co.p_half[i] * (nb[i] * 2.0 - nw[i]);
+                }
+                n_into(&cc, om1, &c1, &mut nc, &mut tmp, &mut full);
+                for i in 0..kept {
                     w[i] = co.e[i] * w[i]
                         + co.b1[i] * nw[i]
                         + co.b2[i] * (na[i] + nb[i])
                         + co.b4[i] * nc[i];
+                }
+                if !left {
+                    std::mem::swap(&mut c0, &mut c1);
+                    c0_at = t1;
                 }
                 steps += 1;
             }
@@ -331,8 +422,9 @@ pub fn solve(
                 .get(next_out)
                 .is_some_and(|&to| (to - tb).abs() <= 1e-12 * spec.duration)
             {
+                stage.halves.expand(&w, &mut full);
                 for (hist, row) in histories.iter_mut().zip(&stage.rows) {
-                    hist.push(row.iter().zip(&w).map(|(r, x)| r * x).sum());
+                    hist.push(row.iter().zip(&full).map(|(r, x)| r * x).sum());
                 }
                 next_out += 1;
                 control.advance(1);
@@ -341,8 +433,9 @@ pub fn solve(
                 return Err(TimeError::TooManySteps(spec.max_steps));
             }
         }
+        stage.halves.expand(&w, &mut full);
         for (i, zi) in z.iter_mut().enumerate() {
-            *zi = (0..size).map(|k| stage.v[(i, k)] * w[k]).sum();
+            *zi = (0..size).map(|k| stage.v[(i, k)] * full[k]).sum();
         }
         if z.iter().any(|x| !(x.re.is_finite() && x.im.is_finite())) {
             return Err(TimeError::Overflow);

@@ -12,6 +12,7 @@
 //! model (down to -3e4 1/s in Example 1) cost no accuracy and no tiny steps.
 //! The hysteretic model is defined for harmonic motion only and has no time response.
 
+pub mod conjugate;
 pub mod exact;
 pub mod exponential;
 pub mod implicit;
@@ -378,7 +379,13 @@ pub fn solve_exponential(
     control.expect(spec.output_times().len() as u64);
     let forcing = Forcing::new(c, spec, state.size())?;
     let out: Vec<Vec<(usize, f64)>> = spec.nodes.iter().map(|&n| c.observe(n)).collect();
-    match exponential::solve(state, &forcing, spec, &out, control) {
+    // Doubled coordinates without internal ones or scheduled supports: one of each conjugate
+    // pair of modal coordinates is integrated (`conjugate`).
+    let pairing = match (model.layout, state.p(), state.schedule()) {
+        (Layout::Doubled, 0, None) => conjugate::Pairing::doubled(state.n(), state.size()),
+        _ => None,
+    };
+    match exponential::solve(state, &forcing, spec, &out, pairing.as_ref(), control) {
         Err(TimeError::Linalg(_)) => solve_in(c, model, spec, true, control),
         r => finite(r?),
     }
