@@ -21,40 +21,13 @@ pub fn eigen(a: &CMat) -> Result<Eigen, LinalgError> {
         return Err(LinalgError::NonFinite);
     }
     let (b, d) = balance(a);
-    let e = b.eigen().map_err(|_| LinalgError::NoConvergence)?;
-    let s = e.S().column_vector();
-    let n = a.nrows();
-    let values: Vec<c64> = (0..n).map(|j| s[j]).collect();
-    if values
-        .iter()
-        .any(|v| !v.re.is_finite() || !v.im.is_finite())
-    {
-        return Err(LinalgError::NonFinite);
-    }
-    let u = e.U();
-    let mut vectors = CMat::from_fn(n, n, |i, j| u[(i, j)] * d[i]);
-    if !all_finite_c(&vectors) {
-        return Err(LinalgError::NonFinite);
-    }
-    // Back to unit norm, as the unbalanced solver gives them.
-    for j in 0..n {
-        let norm = (0..n)
-            .map(|i| vectors[(i, j)].norm_sqr())
-            .sum::<f64>()
-            .sqrt();
-        if norm > 0.0 {
-            for i in 0..n {
-                vectors[(i, j)] /= norm;
-            }
-        }
-    }
-    Ok(Eigen { values, vectors })
+    unbalanced(&b.eigen().map_err(|_| LinalgError::NoConvergence)?, &d)
 }
 
-/// [`eigen`] of a real matrix (balanced the same way), by the real Schur form: about a quarter
-/// of the complex solve's work. A complex pair comes as adjacent columns `j, j + 1` with
-/// `s[j + 1] = conj s[j]` (`s[j].im != 0`) and exactly conjugate vectors; a real eigenvalue has
-/// `im == 0` and a real vector.
+/// [`eigen`] of a real matrix (balanced the same way), by the real Schur form (fewer flops; in
+/// faer at 44 states 0.70 ms against the complex solve's 0.84). A complex pair comes as
+/// adjacent columns `j, j + 1` with `s[j + 1] = conj s[j]` (`s[j].im != 0`) and exactly
+/// conjugate vectors; a real eigenvalue has `im == 0` and a real vector.
 pub fn eigen_real(a: &RMat) -> Result<Eigen, LinalgError> {
     let n = a.nrows();
     if (0..n).any(|j| (0..n).any(|i| !a[(i, j)].is_finite())) {
@@ -62,8 +35,15 @@ pub fn eigen_real(a: &RMat) -> Result<Eigen, LinalgError> {
     }
     let (_, d) = balance(&to_complex(a));
     let b = RMat::from_fn(n, n, |i, j| a[(i, j)] * d[j] / d[i]);
-    let e = b.eigen().map_err(|_| LinalgError::NoConvergence)?;
+    unbalanced(&b.eigen().map_err(|_| LinalgError::NoConvergence)?, &d)
+}
+
+/// The decomposition of `A` from that of the balanced `D^-1 A D`: the vectors `D` times the
+/// balanced ones, back to unit norm (as the unbalanced solver gives them); errs on anything
+/// not finite.
+fn unbalanced(e: &faer::linalg::solvers::Eigen<f64>, d: &[f64]) -> Result<Eigen, LinalgError> {
     let s = e.S().column_vector();
+    let n = d.len();
     let values: Vec<c64> = (0..n).map(|j| s[j]).collect();
     if values
         .iter()

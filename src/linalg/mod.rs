@@ -301,24 +301,8 @@ pub fn add_matvec_slice(y: &mut [c64], a: &[c64], x: &[c64], alpha: c64) {
     );
 }
 
-/// `y += alpha A x`, real.
-pub fn add_matvec_real(y: &mut [f64], a: &RMat, x: &[f64], alpha: f64) {
-    debug_assert_eq!((a.nrows(), a.ncols()), (y.len(), x.len()));
-    if y.is_empty() || x.is_empty() {
-        return;
-    }
-    faer::linalg::matmul::matmul(
-        faer::MatMut::from_column_major_slice_mut(y, a.nrows(), 1),
-        faer::Accum::Add,
-        a.as_ref(),
-        faer::MatRef::from_column_major_slice(x, a.ncols(), 1),
-        alpha,
-        Par::Seq,
-    );
-}
-
-/// `y += alpha A x`.
-pub fn add_matvec(y: &mut [c64], a: &CMat, x: &[c64], alpha: c64) {
+/// `y += alpha A x` (complex, or real: the drift's coupling of a paired integration).
+pub fn add_matvec<T: faer::traits::ComplexField>(y: &mut [T], a: &faer::Mat<T>, x: &[T], alpha: T) {
     debug_assert_eq!((a.nrows(), a.ncols()), (y.len(), x.len()));
     if y.is_empty() || x.is_empty() {
         return;

@@ -5,7 +5,7 @@
 //! `conj r`; the state matrix does too: `A = P conj(A) P`. In the real coordinates
 //! `x = T z` (`x_i = (z_i + z_Pi) / 2`, `x_Pi = (z_i - z_Pi) / 2i` for each pair `i < Pi`)
 //! `A_r = T A T^-1` is real, and its eigenvalues come as conjugate pairs with conjugate vectors
-//! (from the real Schur form, at about a quarter of the complex solve's work). The modal
+//! (from the real Schur form, which costs less than the complex solve). The modal
 //! coordinates `w = V^-1 z` of a real motion then pair as well, `w_{j+1} = conj w_j`, so only
 //! one of each pair needs integrating: half the state and half of each product with the
 //! coupling matrices (the run-ups of cross-coupled rotors).

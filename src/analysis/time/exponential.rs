@@ -180,7 +180,7 @@ impl Coupling {
                 s.x.extend(w.iter().map(|z| z.im));
                 s.y.clear();
                 s.y.resize(2 * h, 0.0);
-                linalg::add_matvec_real(&mut s.y, r, &s.x, f);
+                linalg::add_matvec(&mut s.y, r, &s.x, f);
                 for (i, yi) in y.iter_mut().enumerate() {
                     *yi += c64::new(s.y[i], s.y[h + i]);
                 }
