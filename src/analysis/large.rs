@@ -34,6 +34,14 @@ use crate::system::{Layout, RotorSystem};
 /// has no room (a Jeffcott rotor's Lanczos run does not converge).
 pub const SPARSE_FROM_STATES: usize = 100;
 
+/// Whether `system` under `damping` reduces without its dense full model (run-ups, Level I):
+/// the viscous and hysteretic models (the rotor's own second-order system, sparse) of at least
+/// [`SPARSE_FROM_STATES`] states.
+pub fn sparse_applies(system: &RotorSystem, damping: &DampingModel) -> bool {
+    matches!(damping, DampingModel::Viscous | DampingModel::Hysteretic)
+        && 2 * full_size(system) >= SPARSE_FROM_STATES
+}
+
 /// Coordinates `N` of the full second-order model.
 pub fn full_size(system: &RotorSystem) -> usize {
     match system.layout() {
@@ -67,7 +75,7 @@ pub fn reduce_for_sweep(
     match reduce(
         system,
         damping,
-        lowest(system, 4, bound)?,
+        lowest(system, 4, |_| bound)?,
         &check,
         &[],
         max_states,
@@ -86,10 +94,16 @@ pub struct Check {
 }
 
 /// At least the lowest `count` undamped modes by Lanczos, and every one with `w <= 2 bound` and
-/// the first past it (`bound` 0: the lowest `count`).
-pub fn lowest(system: &RotorSystem, count: usize, bound: f64) -> Result<ModalBasis, AnalysisError> {
+/// the first past it, the bound from the frequencies found (a run-up's and a Level I screen's
+/// band follows from the lowest modes: one Lanczos run finds them and the band).
+pub fn lowest(
+    system: &RotorSystem,
+    count: usize,
+    bound: impl Fn(&[f64]) -> f64,
+) -> Result<ModalBasis, AnalysisError> {
     ModalBasis::lowest(system, |w2| {
-        w2.len() >= count && w2.last().is_some_and(|&l| l.sqrt() > 2.0 * bound)
+        let omega: Vec<f64> = w2.iter().map(|w| w.sqrt()).collect();
+        omega.len() >= count && omega.last().is_some_and(|&l| l > 2.0 * bound(&omega))
     })
     .map_err(|e| AnalysisError::Damping(DampingError::Modal(e)))
 }
@@ -111,9 +125,9 @@ pub fn reduce(
     let full_states = 2 * full_size(system);
     let loads = with_supports(system, loads);
     let band = |w: f64| w <= 2.0 * bound;
-    // Every mode in the band, and one past it (a run-up's basis was found before its band).
+    // Every mode in the band, and one past it (a basis found for a narrower band).
     if basis.omega.last().is_none_or(|&w| band(w)) {
-        basis = lowest(system, basis.len() + 1, bound)?;
+        basis = lowest(system, basis.len() + 1, |_| bound)?;
     }
     let mut m = basis.omega.iter().filter(|&&w| band(w)).count().max(4);
     let exact = checked
@@ -125,7 +139,7 @@ pub fn reduce(
     };
     loop {
         if basis.len() < m + 1 {
-            basis = lowest(system, m + 1, bound)?;
+            basis = lowest(system, m + 1, |_| bound)?;
         }
         let sub = basis
             .augmented_with(system, m, &loads)

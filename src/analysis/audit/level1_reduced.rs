@@ -29,12 +29,20 @@ use crate::analysis::control::Control;
 use crate::analysis::large;
 use crate::analysis::reduction::{self, Criterion, TOLERANCE};
 use crate::damping::DampedModel;
+use crate::fem::modal::ModalBasis;
 use crate::model::damping::DampingModel;
 use crate::system::{Placement, RotorSystem};
 
 /// Largest relative difference of a pole in the band, reduced against full, accepted at the
 /// check.
 pub const CHECK: f64 = 1e-5;
+
+/// The full model a screen's reduction starts from and is checked against: its lowest modes
+/// (held sparse), or the dense model.
+enum Full {
+    Sparse(ModalBasis),
+    Dense(DampedModel),
+}
 
 /// How a Level I screen was reduced.
 #[derive(Debug, Clone, PartialEq)]
@@ -106,39 +114,37 @@ pub fn level1_reduced(
         .map(|&(d, w)| (Placement::Dof(d), system.dofs[d].node, w))
         .collect();
     // The viscous and hysteretic models reduce and check through sparse factors (no dense
-    // matrix of the rotor's size); the models built on a modal basis on the dense full model.
-    let sparse = matches!(damping, DampingModel::Viscous | DampingModel::Hysteretic)
-        && 2 * large::full_size(system) >= large::SPARSE_FROM_STATES;
-    // A rotor the Lanczos run refuses goes to the dense path, which names what is wrong.
-    let lowest = if sparse {
-        large::lowest(system, 2, 0.0).ok()
-    } else {
-        None
-    };
-    let full = match lowest {
-        Some(_) => None,
-        None => Some(DampedModel::build(system, damping)?),
-    };
-    let omega = match (&full, &lowest) {
-        (Some(f), _) => &f.basis.omega,
-        (None, l) => &l.as_ref().expect("sparse: Lanczos basis").omega,
+    // matrix of the rotor's size), their lowest modes and the band's first bound in one Lanczos
+    // run; the models built on a modal basis, and a rotor that run refuses (the dense path
+    // names what is wrong), on the dense full model.
+    let band = |omega: &[f64]| omega.get(1).copied().unwrap_or(omega[0]).max(speed.abs());
+    let sparse = large::sparse_applies(system, damping)
+        .then(|| large::lowest(system, 2, band).ok())
+        .flatten();
+    let full = match sparse {
+        Some(basis) => Full::Sparse(basis),
+        None => Full::Dense(DampedModel::build(system, damping)?),
     };
     // The band: from the second mode at rest (the first forward mode is rarely above it),
     // widened to twice the first forward mode's modulus if it is not.
-    let mut bound = omega.get(1).copied().unwrap_or(omega[0]).max(speed.abs());
+    let mut bound = band(match &full {
+        Full::Sparse(basis) => &basis.omega,
+        Full::Dense(f) => &f.basis.omega,
+    });
     for _ in 0..4 {
         control.check()?;
         let criterion = Criterion::Relative(TOLERANCE);
-        let red = match (&full, &lowest) {
-            (Some(f), _) => reduction::reduce(system, damping, f, speed, bound, &dofs, criterion)?,
-            (None, l) => {
+        let red = match &full {
+            Full::Dense(f) => {
+                reduction::reduce(system, damping, f, speed, bound, &dofs, criterion)?
+            }
+            Full::Sparse(basis) => {
                 let check = large::Check {
                     speeds: vec![speed],
                     bound,
                     criterion,
                 };
-                let basis = l.clone().expect("sparse: Lanczos basis");
-                large::reduce(system, damping, basis, &check, &dofs, usize::MAX)?
+                large::reduce(system, damping, basis.clone(), &check, &dofs, usize::MAX)?
             }
         };
         let Some(red) = red else {
@@ -169,10 +175,10 @@ pub fn level1_reduced(
         let approx = DampedModel::build(&coupled(&red.system, &placed, q), damping)?;
         let exact = coupled(system, &whole_at, q);
         let error = match &full {
-            Some(_) => {
+            Full::Dense(_) => {
                 reduction::band_error(&DampedModel::build(&exact, damping)?, &approx, speed, bound)?
             }
-            None => large::band_error(&exact, damping, &approx, speed, bound)?,
+            Full::Sparse(_) => large::band_error(&exact, damping, &approx, speed, bound)?,
         };
         if error > CHECK {
             break;

@@ -284,8 +284,8 @@ pub fn solve(
     // and rotating-damping terms do: `h |dOmega| |G| / |M|` stays below the step angle, and
     // three run-ups of `benches/forced_ross.py`'s rotors moved 4.8e-8, 4.1e-9 and 2.3e-9 of
     // their peaks from the 5% stages (4.8e-8, 4.1e-9, 5.6e-10 at 20%; Example 1's nonviscous
-    // run-up 2.6e-7 at 20% or 5%, `tests/exponential.rs`). Output intervals longer than that are cut, so that stages can
-    // end inside them.
+    // run-up 2.6e-7 at 20% or 5%, `tests/exponential.rs`). Output intervals longer than that
+    // are cut, so that stages can end inside them.
     let steps_per_stage = 16 * size.max(8);
     let constant = state.schedule().is_none() && state.table_speeds().is_empty();
     let drift = if constant { 0.5 } else { 0.05 } * lo.abs().max(hi.abs());
@@ -313,6 +313,9 @@ pub fn solve(
     let (mut a, mut b, mut cc) = (vec![], vec![], vec![]);
     let mut full = zeros(size);
     let mut tmp = Scratch::default();
+    // The loads at a step's start are those at the last step's end (taken from the right),
+    // across output times and stages: `c0` holds them at `c0_at`.
+    let mut c0_at = f64::NAN;
     let mut g0 = 0;
     while g0 + 1 < grid.len() {
         control.check()?;
@@ -378,8 +381,6 @@ pub fn solve(
                 }
             };
             let co = &coefficients[at].1;
-            // The loads at the step's start: those at the last step's end (from the right).
-            let mut c0_at = f64::NAN;
             for j in 0..k {
                 let t = ta + j as f64 * h;
                 let last = j + 1 == k;

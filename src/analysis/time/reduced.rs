@@ -82,13 +82,12 @@ pub fn solve_sparse(
     allow: bool,
     control: &Control,
 ) -> Result<Option<(TimeResult, Reduction)>, TimeError> {
-    let sparse = matches!(damping, DampingModel::Viscous | DampingModel::Hysteretic)
-        && 2 * large::full_size(system) >= large::SPARSE_FROM_STATES;
-    if !(allow && sparse && spec.speed.constant().is_none()) {
+    if !(allow && large::sparse_applies(system, damping) && spec.speed.constant().is_none()) {
         return Ok(None);
     }
-    // A rotor the Lanczos basis refuses is refused by the dense path too, with its message.
-    let Ok(basis) = large::lowest(system, 4, 0.0) else {
+    // The lowest modes and the band they set, in one Lanczos run. A rotor it refuses is
+    // refused by the dense path too, with its message.
+    let Ok(basis) = large::lowest(system, 4, |omega| bound_of(spec, omega[0])) else {
         return Ok(None);
     };
     let first = basis.omega.first().copied().unwrap_or(0.0);
@@ -108,7 +107,7 @@ pub fn solve_sparse(
 /// least 1.5 times the first natural frequency `first`.
 fn band(system: &RotorSystem, spec: &TimeSpec, first: f64) -> (f64, f64, Vec<usize>) {
     let (_, fastest) = spec.speed.range(spec.duration);
-    let bound = (2.0 * fastest).max(1.5 * first);
+    let bound = bound_of(spec, first);
     let loads: Vec<usize> = spec
         .forces
         .iter()
@@ -117,6 +116,12 @@ fn band(system: &RotorSystem, spec: &TimeSpec, first: f64) -> (f64, f64, Vec<usi
         .map(|node| translation(system, node))
         .collect();
     (bound, fastest, loads)
+}
+
+/// Twice the fastest speed of `spec`, at least 1.5 times the first natural frequency `first`.
+fn bound_of(spec: &TimeSpec, first: f64) -> f64 {
+    let (_, fastest) = spec.speed.range(spec.duration);
+    (2.0 * fastest).max(1.5 * first)
 }
 
 /// The response of `spec` integrated on the reduction `r` of band `bound`.
