@@ -243,3 +243,40 @@ fn coarse_output_intervals_give_the_same_samples() {
         }
     }
 }
+
+#[test]
+fn a_run_ends_with_the_loads_of_its_last_instant() {
+    // 0 -> 600 rad/s in 0.02 s (Omega' = 30000 rad/s^2, the unbalance's -i a Omega' a twelfth
+    // of a Omega^2 at the end): the last sample of a run that ends there against the same instant
+    // inside a run whose speed law goes on. Taking the loads at the end from the right (where
+    // the acceleration has ended) moved the last sample; both now agree to the tolerance.
+    let s = system(example("example1-nvd.modal.json")["rotor"].clone());
+    let m = DampedModel::build(&s, &paper_nvd()).unwrap();
+    let c = own(&s);
+    let ends = TimeSpec {
+        output_interval: 0.002,
+        ..spec(
+            SpeedLaw::Profile(pwl(&[[0.0, 0.0], [0.02, 600.0]])),
+            vec![unbalance(1, 1e-4, 0.0)],
+            vec![],
+            0.02,
+        )
+    };
+    let goes_on = TimeSpec {
+        speed: SpeedLaw::Profile(pwl(&[[0.0, 0.0], [0.04, 1200.0]])),
+        duration: 0.04,
+        ..ends.clone()
+    };
+    let control = Control::default();
+    let a = solve_exponential(&c, &m, &ends, &control).unwrap();
+    let b = solve_exponential(&c, &m, &goes_on, &control).unwrap();
+    assert_eq!(a.time.len(), 11);
+    let peak = a.nodes[0].1.iter().map(|z| z.norm()).fold(0.0, f64::max);
+    for node in 0..2 {
+        let dev = (a.nodes[node].1[10] - b.nodes[node].1[10]).norm() / peak;
+        eprintln!(
+            "node {node}: the end of a run vs the same instant inside one: {dev:.1e} of the peak"
+        );
+        assert!(dev < 2e-6, "node {node}: {dev:e}");
+    }
+}
