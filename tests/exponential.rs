@@ -280,3 +280,61 @@ fn a_run_ends_with_the_loads_of_its_last_instant() {
         assert!(dev < 2e-6, "node {node}: {dev:e}");
     }
 }
+
+#[test]
+fn outputs_between_steps_are_fourth_order_like_the_steps() {
+    // Sampled every 20 us at 800 rad/s, where a step may span 250 us at the default tolerance:
+    // twelve outputs of thirteen come from the dense output, against the closed form.
+    let s = system(example("example1-nvd.modal.json")["rotor"].clone());
+    let m = DampedModel::build(&s, &paper_nvd()).unwrap();
+    let c = own(&s);
+    let sp = TimeSpec {
+        output_interval: 2e-5,
+        ..spec(
+            SpeedLaw::Constant(800.0),
+            vec![unbalance(2, 1e-3, 0.0), unbalance(1, 2e-3, 0.0305)],
+            vec![],
+            0.1,
+        )
+    };
+    let control = Control::default();
+    let exact = solve_in(&c, &m, &sp, false, &control).unwrap();
+    assert_eq!(exact.method, Method::Exact);
+    for tolerance in [1e-6, 1e-9] {
+        let at = TimeSpec {
+            tolerance,
+            ..sp.clone()
+        };
+        let e = solve_exponential(&c, &m, &at, &control).unwrap();
+        let dev = deviation(&e, &exact);
+        eprintln!(
+            "dense output, tolerance {tolerance:e}: {} steps for {} samples, {dev:.1e} of the peak",
+            e.steps,
+            e.time.len()
+        );
+        // 240 us steps at 1e-6, 40 us at 1e-9 (the step goes as the tolerance's fourth root).
+        assert!(e.steps < e.time.len() / if tolerance > 1e-7 { 10 } else { 1 });
+        assert!(dev < 2.0 * tolerance, "{dev:e}");
+    }
+    // Through resonance (0 -> 450 rad/s in 0.4 s), sampled every 50 us: against the same run
+    // at tolerance 1e-10.
+    let law = SpeedLaw::Profile(pwl(&[[0.0, 0.0], [0.4, 450.0]]));
+    let run = TimeSpec {
+        output_interval: 5e-5,
+        ..spec(law, vec![unbalance(1, 1e-4, 0.0)], vec![], 0.4)
+    };
+    let e = solve_exponential(&c, &m, &run, &control).unwrap();
+    let fine = TimeSpec {
+        tolerance: 1e-10,
+        ..run.clone()
+    };
+    let f = solve_exponential(&c, &m, &fine, &control).unwrap();
+    let dev = deviation(&e, &f);
+    eprintln!(
+        "run-up: {} steps for {} samples, {dev:.1e} of the peak",
+        e.steps,
+        e.time.len()
+    );
+    assert!(e.steps * 3 < e.time.len(), "{} steps", e.steps);
+    assert!(dev < 2e-6, "{dev:e}");
+}

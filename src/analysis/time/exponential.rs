@@ -26,76 +26,22 @@
 //! form and one of each pair is integrated, the drift's product in real arithmetic
 //! ([`super::conjugate`]; half the work of the complex state, to round-off the same answer).
 //!
-//! Steps land on every output time and on every breakpoint of the loads, of the speed law and
-//! of the supports' table; stages end on those breakpoints, the last step on the run's end
-//! (loads from the left). The step is `h <= theta / max |Omega|` with `theta` from the
+//! Steps land on every breakpoint of the loads, of the speed law and of the supports' table
+//! (stages end there) and on the run's end (loads from the left); a step spans as many output
+//! intervals as the step bound allows, the outputs inside by the dense output
+//! ([`super::etd`]: `N` on the step as the quadratic through its values at the start, middle
+//! and end, integrated exactly to each output; fourth order like the step, with `N` at the
+//! middle taken from the scheme's own continuous extension and at the end from the new state). The step is `h <= theta / max |Omega|` with `theta` from the
 //! tolerance (see [`step_bound`]), and on each stage no longer than `theta` over the drift's
 //! coupling (`Stage::step_bound`).
 
 use super::conjugate::{Halves, Pairing};
+use super::etd::{Coefficients, Dense, dense_at};
 use super::{Forcing, Method, TimeError, TimeResult, TimeSpec};
 use crate::analysis::control::Control;
 use crate::damping::schedule::ModalSchedule;
 use crate::damping::state::StateModel;
 use crate::linalg::{self, CMat, RMat, c64};
-
-/// `phi_k(z) = sum_j z^j / (j + k)!` for k = 1, 2, 3 (`phi_0 = e^z`).
-fn phis(z: c64) -> [c64; 3] {
-    if z.norm() < 1.0 {
-        let mut out = [c64::new(0.0, 0.0); 3];
-        for (k, o) in out.iter_mut().enumerate() {
-            // 1/(k+1)! + z/(k+2)! + ...: 24 terms reach 1/25! < 1e-25.
-            let mut term = c64::new(1.0 / [1.0, 2.0, 6.0][k], 0.0);
-            let mut sum = term;
-            for j in 1..24 {
-                term = term * z / (j + k + 1) as f64;
-                sum += term;
-            }
-            *o = sum;
-        }
-        out
-    } else {
-        let p1 = (z.exp() - 1.0) / z;
-        let p2 = (p1 - 1.0) / z;
-        let p3 = (p2 - 0.5) / z;
-        [p1, p2, p3]
-    }
-}
-
-/// The step's coefficients, per pole.
-struct Coefficients {
-    e: Vec<c64>,
-    e_half: Vec<c64>,
-    p_half: Vec<c64>,
-    b1: Vec<c64>,
-    b2: Vec<c64>,
-    b4: Vec<c64>,
-}
-
-impl Coefficients {
-    fn new(lambda: &[c64], h: f64) -> Self {
-        let mut c = Coefficients {
-            e: vec![],
-            e_half: vec![],
-            p_half: vec![],
-            b1: vec![],
-            b2: vec![],
-            b4: vec![],
-        };
-        for &l in lambda {
-            let z = l * h;
-            let [p1, p2, p3] = phis(z);
-            let [q1, _, _] = phis(z * 0.5);
-            c.e.push(z.exp());
-            c.e_half.push((z * 0.5).exp());
-            c.p_half.push(q1 * (0.5 * h));
-            c.b1.push((p1 - p2 * 3.0 + p3 * 4.0) * h);
-            c.b2.push((p2 * 2.0 - p3 * 4.0) * h);
-            c.b4.push((p3 * 4.0 - p2) * h);
-        }
-        c
-    }
-}
 
 /// The largest step for tolerance `tol`, over the fastest spin speed `w`: the loads turn by
 /// `theta` radians a step ([`crate::model::loads::step_angle`], which the request's step
@@ -268,7 +214,7 @@ impl Stage<'_> {
     /// than the drift's coupling allows, `h |Omega - Omega_k| |C| <= theta` (the same angle:
     /// `N` carries the coupling as it carries the loads). On `benches/forced_ross.py`'s soft
     /// heavy cross-coupled rotor sampled every 1 ms, the run-up moved 5.6e-6 of its peak from
-    /// a 50x finer step on the loads' bound alone, 1.3e-6 with this one.
+    /// a 20x finer step on the loads' bound alone, 1.3e-6 with this one.
     fn step_bound(
         &self,
         span: &[(f64, bool)],
@@ -350,6 +296,14 @@ pub fn solve(
         zeros(columns.cols.len()),
     );
     let (mut nw, mut na, mut nb, mut nc) = (vec![], vec![], vec![], vec![]);
+    // The dense output's: `N` at a step's middle and end, the state at its start.
+    let (mut nm, mut n1, mut w_start) = (vec![], vec![], vec![]);
+    let mut dense: Vec<(f64, f64, Dense)> = vec![];
+    let is_output = |x: f64, next: usize| {
+        times
+            .get(next)
+            .is_some_and(|&to| (to - x).abs() <= 1e-12 * spec.duration)
+    };
     let (mut a, mut b, mut cc) = (vec![], vec![], vec![]);
     let mut full = zeros(size);
     let mut tmp = Scratch::default();
@@ -375,9 +329,21 @@ pub fn solve(
         let stage = Stage::new(state, omega, &columns.cols, out, pairing)?;
         let h_max = stage.step_bound(&grid[g0..=g1], |t| sp.omega(t), h_max, spec.tolerance);
         coefficients.clear();
+        dense.clear();
         // The kept modal coordinates (all, or one of each conjugate pair).
         let kept = stage.lambda.len();
-        for buffer in [&mut nw, &mut na, &mut nb, &mut nc, &mut a, &mut b, &mut cc] {
+        for buffer in [
+            &mut nw,
+            &mut na,
+            &mut nb,
+            &mut nc,
+            &mut a,
+            &mut b,
+            &mut cc,
+            &mut nm,
+            &mut n1,
+            &mut w_start,
+        ] {
             buffer.clear();
             buffer.resize(kept, c64::new(0.0, 0.0));
         }
@@ -405,8 +371,18 @@ pub fn solve(
                     }
                 }
             };
-        for g in g0..g1 {
-            let (ta, tb) = (grid[g].0, grid[g + 1].0);
+        // `N(w)` at a step's start, when the last step left it (`N(t1, w1)` of a dense step).
+        let mut nw_ready = false;
+        let mut g = g0;
+        while g < g1 {
+            // One step across as many output intervals as the step bound allows (the outputs
+            // inside by the dense output), else substeps of one interval.
+            let ta = grid[g].0;
+            let mut e = g + 1;
+            while e < g1 && !grid[e].1 && grid[e + 1].0 - ta <= h_max * (1.0 + 1e-12) {
+                e += 1;
+            }
+            let tb = grid[e].0;
             let k = substeps(tb - ta, h_max);
             let h = (tb - ta) / k as f64;
             // Output intervals differ in their last bits; a step within 1e-10 of one already
@@ -422,12 +398,13 @@ pub fn solve(
                 }
             };
             let co = &coefficients[at].1;
+            let inside = e > g + 1 && (g + 1..e).any(|i| is_output(grid[i].0, next_out));
             for j in 0..k {
                 let t = ta + j as f64 * h;
                 let last = j + 1 == k;
                 let t1 = if last { tb } else { t + h };
                 // At the end of a step landing on a jump, the loads from the left.
-                let left = last && grid[g + 1].1;
+                let left = last && grid[e].1;
                 if c0_at != t {
                     forcing.coefficients(&columns, t, false, &mut c0);
                 }
@@ -435,7 +412,10 @@ pub fn solve(
                 forcing.coefficients(&columns, tm, false, &mut cm);
                 forcing.coefficients(&columns, t1, left, &mut c1);
                 let (om0, omm, om1) = (sp.omega(t), sp.omega(tm), sp.omega(t1));
-                n_into(&w, om0, &c0, &mut nw, &mut tmp, &mut full);
+                if !nw_ready {
+                    n_into(&w, om0, &c0, &mut nw, &mut tmp, &mut full);
+                }
+                nw_ready = false;
                 for i in 0..kept {
                     a[i] = co.e_half[i] * w[i] + co.p_half[i] * nw[i];
                 }
@@ -448,11 +428,50 @@ pub fn solve(
                     cc[i] = co.e_half[i] * a[i] + co.p_half[i] * (nb[i] * 2.0 - nw[i]);
                 }
                 n_into(&cc, om1, &c1, &mut nc, &mut tmp, &mut full);
+                if inside {
+                    w_start.clone_from(&w);
+                }
                 for i in 0..kept {
                     w[i] = co.e[i] * w[i]
                         + co.b1[i] * nw[i]
                         + co.b2[i] * (na[i] + nb[i])
                         + co.b4[i] * nc[i];
+                }
+                if inside {
+                    // `N` at the step's middle from the scheme's own continuous extension,
+                    // at its end from `w1`: the quadratic through `N(t, w)`, these two, is
+                    // `N` to third order, so the outputs inside are fourth order like `w1`.
+                    let half = dense_at(&mut dense, &stage.lambda, h, 0.5);
+                    for i in 0..kept {
+                        a[i] = half.e[i] * w_start[i]
+                            + half.c0[i] * nw[i]
+                            + half.cm[i] * 0.5 * (na[i] + nb[i])
+                            + half.c1[i] * nc[i];
+                    }
+                    n_into(&a, omm, &cm, &mut nm, &mut tmp, &mut full);
+                    n_into(&w, om1, &c1, &mut n1, &mut tmp, &mut full);
+                    for &(ti, _) in &grid[g + 1..e] {
+                        if !is_output(ti, next_out) {
+                            continue;
+                        }
+                        let d = dense_at(&mut dense, &stage.lambda, h, (ti - t) / h);
+                        for q in 0..kept {
+                            b[q] = d.e[q] * w_start[q]
+                                + d.c0[q] * nw[q]
+                                + d.cm[q] * nm[q]
+                                + d.c1[q] * n1[q];
+                        }
+                        stage.halves.expand(&b, &mut full);
+                        for (hist, row) in histories.iter_mut().zip(&stage.rows) {
+                            hist.push(row.iter().zip(&full).map(|(r, x)| r * x).sum());
+                        }
+                        next_out += 1;
+                        control.advance(1);
+                    }
+                    if !left {
+                        std::mem::swap(&mut nw, &mut n1);
+                        nw_ready = true;
+                    }
                 }
                 if !left {
                     std::mem::swap(&mut c0, &mut c1);
@@ -460,10 +479,7 @@ pub fn solve(
                 }
                 steps += 1;
             }
-            if times
-                .get(next_out)
-                .is_some_and(|&to| (to - tb).abs() <= 1e-12 * spec.duration)
-            {
+            if is_output(tb, next_out) {
                 stage.halves.expand(&w, &mut full);
                 for (hist, row) in histories.iter_mut().zip(&stage.rows) {
                     hist.push(row.iter().zip(&full).map(|(r, x)| r * x).sum());
@@ -474,6 +490,7 @@ pub fn solve(
             if steps > spec.max_steps {
                 return Err(TimeError::TooManySteps(spec.max_steps));
             }
+            g = e;
         }
         stage.halves.expand(&w, &mut full);
         for (i, zi) in z.iter_mut().enumerate() {

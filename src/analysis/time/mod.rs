@@ -13,6 +13,7 @@
 //! The hysteretic model is defined for harmonic motion only and has no time response.
 
 pub mod conjugate;
+mod etd;
 pub mod exact;
 pub mod exponential;
 pub mod implicit;
