@@ -31,9 +31,10 @@
 //! intervals as the step bound allows, the outputs inside by the dense output
 //! ([`super::etd`]: `N` on the step as the quadratic through its values at the start, middle
 //! and end, integrated exactly to each output; fourth order like the step, with `N` at the
-//! middle taken from the scheme's own continuous extension and at the end from the new state). The step is `h <= theta / max |Omega|` with `theta` from the
-//! tolerance (see [`step_bound`]), and on each stage no longer than `theta` over the drift's
-//! coupling (`Stage::step_bound`).
+//! middle taken from the scheme's own continuous extension and at the end from the new
+//! state). The step is `h <= theta / max |Omega|` with `theta` from the tolerance (see
+//! [`step_bound`]), and on each stage no longer than `theta` over the drift's coupling
+//! (`Stage::step_bound`).
 
 use super::conjugate::{Halves, Pairing};
 use super::etd::{Coefficients, Dense, dense_at};
