@@ -116,70 +116,146 @@ pub fn lowest(
 pub fn reduce(
     system: &RotorSystem,
     damping: &DampingModel,
-    mut basis: ModalBasis,
+    basis: ModalBasis,
     check: &Check,
     loads: &[usize],
     max_states: usize,
 ) -> Result<Option<Reduced>, AnalysisError> {
-    let (checked, bound, criterion) = (&check.speeds, check.bound, check.criterion);
-    let full_states = 2 * full_size(system);
-    let loads = with_supports(system, loads);
-    let band = |w: f64| w <= 2.0 * bound;
-    // Every mode in the band, and one past it (a basis found for a narrower band).
-    if basis.omega.last().is_none_or(|&w| band(w)) {
-        basis = lowest(system, basis.len() + 1, |_| bound)?;
-    }
-    let mut m = basis.omega.iter().filter(|&&w| band(w)).count().max(4);
-    let exact = checked
+    let mut widening = Widening::new(system, damping, basis, check, loads, max_states)?;
+    let exact = exact_poles(system, damping, check)?;
+    widening.first_passing(&exact)
+}
+
+/// The full model's poles that `check` compares with, at each of its speeds: every one within
+/// 1.5 times its bound. They do not depend on the basis (a run-up finds them on a second thread
+/// while it integrates its first candidate).
+pub fn exact_poles(
+    system: &RotorSystem,
+    damping: &DampingModel,
+    check: &Check,
+) -> Result<Vec<Vec<c64>>, AnalysisError> {
+    check
+        .speeds
         .iter()
-        .map(|&w| full_poles(system, damping, w, 1.5 * bound))
-        .collect::<Result<Vec<_>, _>>()?;
-    let tolerance = match criterion {
-        Criterion::Relative(t) | Criterion::Response(t) => t,
-    };
-    loop {
-        if basis.len() < m + 1 {
-            basis = lowest(system, m + 1, |_| bound)?;
+        .map(|&w| full_poles(system, damping, w, 1.5 * check.bound))
+        .collect()
+}
+
+/// [`reduce`]'s candidates, each basis half as wide again as the last.
+pub struct Widening<'a> {
+    system: &'a RotorSystem,
+    damping: &'a DampingModel,
+    check: &'a Check,
+    basis: ModalBasis,
+    loads: Vec<usize>,
+    /// Modes of the next candidate.
+    m: usize,
+    max_states: usize,
+}
+
+impl<'a> Widening<'a> {
+    pub fn new(
+        system: &'a RotorSystem,
+        damping: &'a DampingModel,
+        mut basis: ModalBasis,
+        check: &'a Check,
+        loads: &[usize],
+        max_states: usize,
+    ) -> Result<Self, AnalysisError> {
+        let bound = check.bound;
+        let band = |w: f64| w <= 2.0 * bound;
+        // Every mode in the band, and one past it (a basis found for a narrower band).
+        if basis.omega.last().is_none_or(|&w| band(w)) {
+            basis = lowest(system, basis.len() + 1, |_| bound)?;
         }
-        let sub = basis
-            .augmented_with(system, m, &loads)
+        let m = basis.omega.iter().filter(|&&w| band(w)).count().max(4);
+        Ok(Widening {
+            system,
+            damping,
+            check,
+            basis,
+            loads: with_supports(system, loads),
+            m,
+            max_states,
+        })
+    }
+
+    /// The next candidate, its `info` still without the check's error ([`judge`] fills it);
+    /// `None` once a candidate would not halve the state or would pass `max_states`.
+    pub fn candidate(&mut self) -> Result<Option<Reduced>, AnalysisError> {
+        let (system, m, bound) = (self.system, self.m, self.check.bound);
+        if self.basis.len() < m + 1 {
+            self.basis = lowest(system, m + 1, |_| bound)?;
+        }
+        let sub = self
+            .basis
+            .augmented_with(system, m, &self.loads)
             .map_err(|e: ModalError| AnalysisError::Damping(DampingError::Modal(e)))?;
         let reduced = sub.reduce(system);
-        let model = DampedModel::build(&reduced, damping)?;
-        if 2 * model.states() > full_states || model.states() > max_states {
+        let model = DampedModel::build(&reduced, self.damping)?;
+        let full_states = 2 * full_size(system);
+        if 2 * model.states() > full_states || model.states() > self.max_states {
             return Ok(None);
         }
-        let approx = checked
-            .iter()
-            .map(|&w| compared_at(&model, w))
-            .collect::<Result<Vec<_>, _>>()?;
-        let error = exact
-            .iter()
-            .zip(&approx)
-            .map(|(e, a)| both_ways(e, a, bound, criterion))
-            .fold(0.0, f64::max);
-        if error <= tolerance {
-            let info = Reduction {
-                modes: m,
-                vectors: sub.len(),
-                states: model.states(),
-                full_states,
-                band: basis.omega[m - 1],
-                checked_speed: checked[0],
-                checked_speeds: checked.to_vec(),
-                max_relative_error: error,
-                sparse: true,
-                outside: None,
-            };
-            return Ok(Some(Reduced {
-                system: reduced,
-                model,
-                basis: sub,
-                info,
-            }));
-        }
-        m = (3 * m).div_ceil(2);
+        self.m = (3 * m).div_ceil(2);
+        let info = Reduction {
+            modes: m,
+            vectors: sub.len(),
+            states: model.states(),
+            full_states,
+            band: self.basis.omega[m - 1],
+            checked_speed: self.check.speeds[0],
+            checked_speeds: self.check.speeds.clone(),
+            max_relative_error: f64::NAN,
+            sparse: true,
+            outside: None,
+        };
+        Ok(Some(Reduced {
+            system: reduced,
+            model,
+            basis: sub,
+            info,
+        }))
     }
+}
+
+impl Widening<'_> {
+    /// The first of the remaining candidates that passes the check against the full model's
+    /// poles `exact` (from [`exact_poles`]), or `None`.
+    pub fn first_passing(&mut self, exact: &[Vec<c64>]) -> Result<Option<Reduced>, AnalysisError> {
+        while let Some(candidate) = self.candidate()? {
+            if let Some(r) = judge(candidate, exact, self.check)? {
+                return Ok(Some(r));
+            }
+        }
+        Ok(None)
+    }
+}
+
+/// `candidate` with its error in its `info` if it reproduces the full model's poles `exact`
+/// (from [`exact_poles`]) as `check` asks, both ways; else `None`.
+pub fn judge(
+    mut candidate: Reduced,
+    exact: &[Vec<c64>],
+    check: &Check,
+) -> Result<Option<Reduced>, AnalysisError> {
+    let approx = check
+        .speeds
+        .iter()
+        .map(|&w| compared_at(&candidate.model, w))
+        .collect::<Result<Vec<_>, _>>()?;
+    let error = exact
+        .iter()
+        .zip(&approx)
+        .map(|(e, a)| both_ways(e, a, check.bound, check.criterion))
+        .fold(0.0, f64::max);
+    let tolerance = match check.criterion {
+        Criterion::Relative(t) | Criterion::Response(t) => t,
+    };
+    Ok((error <= tolerance).then(|| {
+        candidate.info.max_relative_error = error;
+        candidate
+    }))
 }
 
 /// [`super::reduction::band_error`] for a full model held sparse: the largest relative distance

@@ -63,18 +63,21 @@ pub fn solve(
         let (bound, fastest, loads) = band(system, spec, first);
         let criterion = Criterion::Response(RESPONSE_TOLERANCE);
         if let Ok(Some(r)) = reduce(system, damping, full, fastest, bound, &loads, criterion) {
-            let (out, info) = integrate(system, r, bound, spec, control)?;
-            return Ok((out, Some(info)));
+            let out = integrate(system, &r, bound, spec, control)?;
+            return Ok((out, Some(r.info)));
         }
     }
     Ok((time_response(system, full, spec, false, control)?, None))
 }
 
 /// [`solve`]'s reduction without the dense full model: for the viscous and hysteretic models,
-/// the lowest modes by Lanczos and the check through sparse factors ([`large::reduce`]), so a
-/// run-up costs no dense matrix of the rotor's size (on a 113-element cross-coupled rotor the
-/// dense full model's build and check took 84 of 103 ms). `None` where it does not apply or no
-/// reduction passes: then build the full model and [`solve`].
+/// the lowest modes by Lanczos and the check through sparse factors (as [`large::reduce`]), so
+/// a run-up costs no dense matrix of the rotor's size (on a 113-element cross-coupled rotor the
+/// dense full model's build and check took 84 of 103 ms). The check's full-model poles are
+/// found on a second thread while the first candidate is integrated: on `benches/
+/// forced_ross.py`'s four rotors the run-up took 14.3 / 7.6 / 11.0 / 12.0 ms over HTTP with
+/// the two in turn, 12.2 / 6.4 / 8.0 / 8.4 ms side by side, the same answer to the bit. `None`
+/// where it does not apply or no reduction passes: then build the full model and [`solve`].
 pub fn solve_sparse(
     system: &RotorSystem,
     damping: &DampingModel,
@@ -97,8 +100,38 @@ pub fn solve_sparse(
         bound,
         criterion: Criterion::Response(RESPONSE_TOLERANCE),
     };
-    match large::reduce(system, damping, basis, &check, &loads, usize::MAX) {
-        Ok(Some(r)) => Ok(Some(integrate(system, r, bound, spec, control)?)),
+    let Ok(mut widening) = large::Widening::new(system, damping, basis, &check, &loads, usize::MAX)
+    else {
+        return Ok(None);
+    };
+    // The check's full-model poles (shift-invert Arnoldi) do not depend on the basis: found on
+    // a second thread while the first candidate is built and integrated, whose integration is
+    // kept if it passes (the first passed on every rotor of `benches/`; the two halves take
+    // comparable time there, 20-40% of the run-up each).
+    let (exact, first) = std::thread::scope(|scope| {
+        let exact = scope.spawn(|| large::exact_poles(system, damping, &check));
+        let first = widening.candidate().map(|c| {
+            c.map(|c| {
+                let out = integrate(system, &c, bound, spec, control);
+                (c, out)
+            })
+        });
+        let exact = exact
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+        (exact, first)
+    });
+    let (Ok(exact), Ok(Some((candidate, out)))) = (exact, first) else {
+        return Ok(None);
+    };
+    match large::judge(candidate, &exact, &check) {
+        Ok(Some(r)) => return Ok(Some((out?, r.info))),
+        Ok(None) => {}
+        Err(_) => return Ok(None),
+    }
+    // The first candidate failed: wider ones, integrated once one passes.
+    match widening.first_passing(&exact) {
+        Ok(Some(r)) => Ok(Some((integrate(system, &r, bound, spec, control)?, r.info))),
         _ => Ok(None),
     }
 }
@@ -127,17 +160,16 @@ fn bound_of(spec: &TimeSpec, first: f64) -> f64 {
 /// The response of `spec` integrated on the reduction `r` of band `bound`.
 fn integrate(
     system: &RotorSystem,
-    r: Reduced,
+    r: &Reduced,
     bound: f64,
     spec: &TimeSpec,
     control: &Control,
-) -> Result<(TimeResult, Reduction), TimeError> {
+) -> Result<TimeResult, TimeError> {
     let c = Coordinates {
         physical: system,
         solved: &r.system,
         basis: Some(&r.basis.phi),
         slow: Some(slow_entries(&r.model, &r.basis.omega, 2.0 * bound)),
     };
-    let out = solve_exponential(&c, &r.model, spec, control)?;
-    Ok((out, r.info))
+    solve_exponential(&c, &r.model, spec, control)
 }
