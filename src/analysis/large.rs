@@ -217,9 +217,7 @@ impl<'a> Widening<'a> {
             info,
         }))
     }
-}
 
-impl Widening<'_> {
     /// The first of the remaining candidates that passes the check against the full model's
     /// poles `exact` (from [`exact_poles`]), or `None`.
     pub fn first_passing(&mut self, exact: &[Vec<c64>]) -> Result<Option<Reduced>, AnalysisError> {

@@ -211,6 +211,15 @@ impl<'a> Stage<'a> {
 }
 
 impl Stage<'_> {
+    /// One output sample of the kept modal coordinates `w` on every output (`full`: room for
+    /// all the modal coordinates).
+    fn record(&self, w: &[c64], full: &mut [c64], histories: &mut [Vec<c64>]) {
+        self.halves.expand(w, full);
+        for (hist, row) in histories.iter_mut().zip(&self.rows) {
+            hist.push(row.iter().zip(full.iter()).map(|(r, x)| r * x).sum());
+        }
+    }
+
     /// The step on this stage (grid points `span`): `h_loads`, the loads' bound, and no longer
     /// than the drift's coupling allows, `h |Omega - Omega_k| |C| <= theta` (the same angle:
     /// `N` carries the coupling as it carries the loads). On `benches/forced_ross.py`'s soft
@@ -462,10 +471,7 @@ pub fn solve(
                                 + d.cm[q] * nm[q]
                                 + d.c1[q] * n1[q];
                         }
-                        stage.halves.expand(&b, &mut full);
-                        for (hist, row) in histories.iter_mut().zip(&stage.rows) {
-                            hist.push(row.iter().zip(&full).map(|(r, x)| r * x).sum());
-                        }
+                        stage.record(&b, &mut full, &mut histories);
                         next_out += 1;
                         control.advance(1);
                     }
@@ -481,10 +487,7 @@ pub fn solve(
                 steps += 1;
             }
             if is_output(tb, next_out) {
-                stage.halves.expand(&w, &mut full);
-                for (hist, row) in histories.iter_mut().zip(&stage.rows) {
-                    hist.push(row.iter().zip(&full).map(|(r, x)| r * x).sum());
-                }
+                stage.record(&w, &mut full, &mut histories);
                 next_out += 1;
                 control.advance(1);
             }
