@@ -233,27 +233,42 @@ impl<'a> Widening<'a> {
 /// `candidate` with its error in its `info` if it reproduces the full model's poles `exact`
 /// (from [`exact_poles`]) as `check` asks, both ways; else `None`.
 pub fn judge(
-    mut candidate: Reduced,
+    candidate: Reduced,
     exact: &[Vec<c64>],
     check: &Check,
 ) -> Result<Option<Reduced>, AnalysisError> {
-    let approx = check
+    let approx = compared(&candidate.model, check)?;
+    Ok(accept(candidate, exact, &approx, check))
+}
+
+/// The poles of a candidate's `model` that `check` compares, at each of its speeds.
+pub fn compared(model: &DampedModel, check: &Check) -> Result<Vec<Vec<c64>>, AnalysisError> {
+    Ok(check
         .speeds
         .iter()
-        .map(|&w| compared_at(&candidate.model, w))
-        .collect::<Result<Vec<_>, _>>()?;
+        .map(|&w| compared_at(model, w))
+        .collect::<Result<Vec<_>, _>>()?)
+}
+
+/// [`judge`] with the candidate's poles `approx` (from [`compared`]) already found.
+pub fn accept(
+    mut candidate: Reduced,
+    exact: &[Vec<c64>],
+    approx: &[Vec<c64>],
+    check: &Check,
+) -> Option<Reduced> {
     let error = exact
         .iter()
-        .zip(&approx)
+        .zip(approx)
         .map(|(e, a)| both_ways(e, a, check.bound, check.criterion))
         .fold(0.0, f64::max);
     let tolerance = match check.criterion {
         Criterion::Relative(t) | Criterion::Response(t) => t,
     };
-    Ok((error <= tolerance).then(|| {
+    (error <= tolerance).then(|| {
         candidate.info.max_relative_error = error;
         candidate
-    }))
+    })
 }
 
 /// [`super::reduction::band_error`] for a full model held sparse: the largest relative distance

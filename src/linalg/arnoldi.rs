@@ -79,6 +79,9 @@ pub fn nearest_from(
     loop {
         // Extend the space to `target` vectors.
         let mut exhausted = false;
+        // The whole extension at once (growing by doubling copied it and faulted its pages
+        // in again: 14% of a small rotor's check).
+        basis.reserve((target + 1) * size - basis.len());
         while h.len() < target {
             let j = h.len();
             let mut w = solve(&basis[j * size..(j + 1) * size]);

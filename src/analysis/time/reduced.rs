@@ -26,6 +26,7 @@
 use super::{
     Coordinates, TimeError, TimeResult, TimeSpec, solve_exponential, time_response, translation,
 };
+use crate::analysis::AnalysisError;
 use crate::analysis::control::Control;
 use crate::analysis::large::{self, Check};
 use crate::analysis::reduction::{Criterion, RESPONSE_TOLERANCE, Reduced, Reduction, reduce};
@@ -107,27 +108,40 @@ pub fn solve_sparse(
     // The check's full-model poles (shift-invert Arnoldi) do not depend on the basis: found on
     // a second thread while the first candidate is built and integrated, whose integration is
     // kept if it passes (the first passed on every rotor of `benches/`; the two halves take
-    // comparable time there, 20-40% of the run-up each).
+    // comparable time there, 20-40% of the run-up each). The candidate's own poles for the
+    // comparison are found on that thread too, once the Arnoldi is done (the candidate is
+    // built long before).
+    let (tx, rx) = std::sync::mpsc::sync_channel::<DampedModel>(1);
+    let check = &check;
     let (exact, first) = std::thread::scope(|scope| {
-        let exact = scope.spawn(|| large::exact_poles(system, damping, &check));
+        let helper = scope.spawn(move || {
+            let exact = large::exact_poles(system, damping, check)?;
+            let approx = rx
+                .recv()
+                .ok()
+                .map(|m| large::compared(&m, check))
+                .transpose()?;
+            Ok::<_, AnalysisError>((exact, approx))
+        });
         let first = widening.candidate().map(|c| {
             c.map(|c| {
+                // A failed send means the helper failed: its error is taken below.
+                let _ = tx.send(c.model.clone());
+                drop(tx);
                 let out = integrate(system, &c, bound, spec, control);
                 (c, out)
             })
         });
-        let exact = exact
+        let exact = helper
             .join()
             .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
         (exact, first)
     });
-    let (Ok(exact), Ok(Some((candidate, out)))) = (exact, first) else {
+    let (Ok((exact, Some(approx))), Ok(Some((candidate, out)))) = (exact, first) else {
         return Ok(None);
     };
-    match large::judge(candidate, &exact, &check) {
-        Ok(Some(r)) => return Ok(Some((out?, r.info))),
-        Ok(None) => {}
-        Err(_) => return Ok(None),
+    if let Some(r) = large::accept(candidate, &exact, &approx, check) {
+        return Ok(Some((out?, r.info)));
     }
     // The first candidate failed: wider ones, integrated once one passes.
     match widening.first_passing(&exact) {
