@@ -82,6 +82,9 @@ pub fn sparse_bytes_per_coordinate(doubled: bool) -> u64 {
     2 * 16 * SPARSE_ARNOLDI as u64 + 6 * 8 * vectors / copies as u64 + 2048
 }
 
+/// Points per element of a static analysis's diagram, ends included.
+pub const DIAGRAM_POINTS: usize = 9;
+
 /// JSON bytes per number in an answer (a full-precision double and its separator).
 pub const BYTES_PER_VALUE: u64 = 24;
 

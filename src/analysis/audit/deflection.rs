@@ -79,10 +79,16 @@ impl Span {
 /// `1e-12` of the interval (the curves are smooth and unimodal between neighbouring samples).
 pub fn refine_max(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64) -> f64 {
     let r = 0.5 * (5f64.sqrt() - 1.0);
-    let tol = 1e-12 * (b - a).abs().max(f64::MIN_POSITIVE);
+    // Not below a few ulps of the positions: on a fine mesh far from z = 0 (elements of 1 mm
+    // at z = 2 m) 1e-12 of the bracket is below one ulp of z, and the loop never ended.
+    let ulps = 4.0 * f64::EPSILON * a.abs().max(b.abs());
+    let tol = (1e-12 * (b - a).abs()).max(ulps).max(f64::MIN_POSITIVE);
     let (mut c, mut d) = (b - r * (b - a), a + r * (b - a));
     let (mut fc, mut fd) = (f(c), f(d));
-    while (b - a).abs() > tol {
+    // Golden section shrinks by 0.618 a step: 1e-12 takes 58; the cap only guards round-off.
+    let mut steps = 0;
+    while (b - a).abs() > tol && steps < 200 {
+        steps += 1;
         if fc >= fd {
             b = d;
             (d, fd) = (c, fc);
@@ -143,5 +149,14 @@ mod tests {
     fn golden_section_finds_a_parabolas_top() {
         let x = refine_max(|x| -(x - 0.3141).powi(2), 0.0, 1.0);
         assert!((x - 0.3141).abs() < 1e-9);
+    }
+
+    #[test]
+    fn golden_section_ends_on_a_bracket_narrower_than_its_tolerance_allows() {
+        // A 0.25 mm bracket at z = 2 m (a 2000-element shaft's samples): 1e-12 of it is below
+        // one ulp of z (4.4e-16 m); the search used to spin forever there.
+        let top = 2.000_1;
+        let x = refine_max(|x| -(x - top).powi(2), 2.0, 2.000_25);
+        assert!((x - top).abs() < 1e-12, "{x}");
     }
 }
