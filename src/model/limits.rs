@@ -82,6 +82,16 @@ pub fn sparse_bytes_per_coordinate(doubled: bool) -> u64 {
     2 * 16 * SPARSE_ARNOLDI as u64 + 6 * 8 * vectors / copies as u64 + 2048
 }
 
+/// Most modes of a critical speed map held sparse: each stiffness's Lanczos run keeps about
+/// twice as many vectors of the rotor's size (more, and the dense solve is the cheaper).
+pub const MAX_SPARSE_MODES: usize = 100;
+
+/// Whether a critical speed map of a shaft of `dofs` complex coordinates asking `modes` is
+/// solved sparse: past `SPARSE_FROM` coordinates, for at most [`MAX_SPARSE_MODES`] modes.
+pub fn map_is_sparse(dofs: usize, modes: usize) -> bool {
+    dofs > SPARSE_FROM && modes <= MAX_SPARSE_MODES
+}
+
 /// Points per element of a static analysis's diagram, ends included.
 pub const DIAGRAM_POINTS: usize = 9;
 

@@ -27,7 +27,8 @@ use crate::analysis::AnalysisError;
 use crate::analysis::control::Control;
 use crate::analysis::roots::brent;
 use crate::fem::assembly;
-use crate::linalg::{self, RMat};
+use crate::linalg::{self, LinalgError, RMat, Sparse, lanczos};
+use crate::model::limits::map_is_sparse;
 use crate::model::rotor::BeamRotor;
 use crate::model::supports::{GeneralSupport, Law, Matrix2};
 
@@ -109,6 +110,18 @@ pub fn critical_speed_map(
     })
 }
 
+/// The lowest `modes` frequencies of [`critical_speed_map`]'s pencil with springs `k`, the
+/// shaft held dense or sparse as asked (the map chooses by size; this lets the two be compared
+/// on one rotor).
+pub fn frequencies_at(
+    rotor: &BeamRotor,
+    k: f64,
+    modes: usize,
+    sparse: bool,
+) -> Result<Vec<f64>, AnalysisError> {
+    Springs::with(rotor, modes, sparse).at(k)
+}
+
 /// The first undamped natural frequency at rest on rigid supports, rad/s: the shaft and disks
 /// with the translations of every bearing's node held (rotations free; seals left out), the
 /// critical speed API 617's critical speed ratio `MCS / N_c1` is taken on.
@@ -144,15 +157,27 @@ pub fn rigid_first(rotor: &BeamRotor) -> Result<f64, AnalysisError> {
 
 /// The shaft with one spring `k` per support on its translation.
 struct Springs {
-    k: RMat,
-    m: RMat,
+    pencil: Pencil,
     /// Translation dof of each support (repeated if two share a node: they add).
     dofs: Vec<usize>,
     modes: usize,
 }
 
+/// The shaft's `K` and `M`: dense, or sparse past 600 coordinates ([`map_is_sparse`]: the
+/// lowest modes by shift-invert Lanczos, work linear in the mesh).
+enum Pencil {
+    Dense { k: RMat, m: RMat },
+    Sparse { k: Sparse, m: Sparse },
+}
+
 impl Springs {
     fn new(rotor: &BeamRotor, modes: usize) -> Self {
+        let n = 2 * rotor.shaft_nodes();
+        Self::with(rotor, modes, map_is_sparse(n, modes))
+    }
+
+    /// [`Springs::new`] held dense or sparse as asked.
+    fn with(rotor: &BeamRotor, modes: usize, sparse: bool) -> Self {
         let s = assembly::beam_shaft(rotor);
         let dofs = rotor
             .supports()
@@ -167,10 +192,19 @@ impl Springs {
                     .map(|g| 2 * g.node),
             )
             .collect();
+        let pencil = match sparse {
+            true => Pencil::Sparse {
+                k: s.stiffness_rotating.clone(),
+                m: s.mass.clone(),
+            },
+            false => Pencil::Dense {
+                k: s.stiffness_rotating.to_dense(),
+                m: s.mass.to_dense(),
+            },
+        };
         Springs {
             modes: modes.min(s.n()),
-            k: s.stiffness_rotating.to_dense(),
-            m: s.mass.to_dense(),
+            pencil,
             dofs,
         }
     }
@@ -178,16 +212,46 @@ impl Springs {
     /// The lowest natural frequencies with springs `k`. A negative eigenvalue (a tabulated
     /// `k < 0`) or round-off below a free rigid mode is reported as 0, never NaN.
     fn at(&self, k: f64) -> Result<Vec<f64>, AnalysisError> {
-        let mut kk = self.k.clone();
-        for &d in &self.dofs {
-            kk[(d, d)] += k;
-        }
-        let w2 = linalg::symmetric_modes(&kk, &self.m)?.omega_squared;
+        let w2 = match &self.pencil {
+            Pencil::Dense { k: k0, m } => {
+                let mut kk = k0.clone();
+                for &d in &self.dofs {
+                    kk[(d, d)] += k;
+                }
+                linalg::symmetric_modes(&kk, m)?.omega_squared
+            }
+            Pencil::Sparse { k: k0, m } => self.lowest(k0, m, k)?,
+        };
         Ok(w2
             .iter()
             .take(self.modes)
             .map(|v| v.max(0.0).sqrt())
             .collect())
+    }
+
+    /// The lowest `w^2` of the sparse pencil with springs `k`. Where `K + k E` is not positive
+    /// definite (springs too soft or too few to hold the shaft, or negative), the pencil is
+    /// shifted by `s M` (`s` = 1e-8 of the largest `K_ii / M_ii`, below the shaft's lowest
+    /// bending mode on any practical mesh) and `s` taken off again.
+    fn lowest(&self, k0: &Sparse, m: &Sparse, k: f64) -> Result<Vec<f64>, AnalysisError> {
+        let n = k0.nrows();
+        let springs: Vec<(usize, usize, f64)> = self.dofs.iter().map(|&d| (d, d, k)).collect();
+        let kk = k0.plus(&Sparse::from_triplets(n, n, &springs), 1.0);
+        let enough = |w2: &[f64]| w2.len() >= self.modes;
+        match lanczos::lowest_modes(&kk, m, enough) {
+            Ok(modes) => Ok(modes.omega_squared),
+            Err(LinalgError::NotPositiveDefinite) => {
+                let s = 1e-8
+                    * (0..n)
+                        .map(|i| kk.get(i, i) / m.get(i, i))
+                        .filter(|r| r.is_finite())
+                        .fold(0.0, f64::max);
+                let shifted = kk.plus(m, s);
+                let modes = lanczos::lowest_modes(&shifted, m, enough)?;
+                Ok(modes.omega_squared.iter().map(|w2| w2 - s).collect())
+            }
+            Err(e) => Err(e.into()),
+        }
     }
 }
 

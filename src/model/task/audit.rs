@@ -9,7 +9,9 @@ use crate::model::api::{
     StaticRequest, StaticSupports,
 };
 use crate::model::error::{Invalid, finite, positive};
-use crate::model::limits::{BYTES_PER_VALUE, Cost, DIAGRAM_POINTS, Limits, Size};
+use crate::model::limits::{
+    BYTES_PER_VALUE, Cost, DIAGRAM_POINTS, Limits, MAX_SPARSE_MODES, Size, map_is_sparse,
+};
 use crate::model::loads::Excitation;
 use crate::model::rotor::{BeamRotor, Rotor};
 use crate::model::speeds::{linear, logarithmic};
@@ -117,7 +119,14 @@ impl CriticalSpeedMapRequest {
         if modes < 1 {
             bad.push("modes", format!("must be >= 1 (got {modes})"));
         }
-        let rotor = beam(&self.rotor, limits, bad)?;
+        // Past DENSE_UP_TO coordinates the shaft is held sparse: bounded by `max_sparse_dofs`
+        // and the memory estimate, not by the dense limits.
+        let relaxed = Limits {
+            max_dofs: limits.max_sparse_dofs.max(limits.max_dofs),
+            dofs_setting: "WHIRL_MAX_SPARSE_DOFS",
+            ..*limits
+        };
+        let rotor = beam(&self.rotor, &relaxed, bad)?;
         let dofs = 2 * rotor.nodes();
         if modes as u64 > dofs as u64 {
             return Err(Invalid::one(
@@ -135,7 +144,27 @@ impl CriticalSpeedMapRequest {
         };
         let count = stiffness.len();
         let values = (count * (modes as usize + 1)) as u64 + 64;
-        Ok(Task {
+        let solves = count + 16 * modes as usize;
+        let sparse = map_is_sparse(dofs, modes as usize);
+        if !sparse && dofs > limits.max_dofs {
+            if dofs <= DENSE_UP_TO {
+                // The dense limit's own message.
+                beam(&self.rotor, limits, Invalid::default())?;
+            }
+            return Err(Invalid::one(
+                "modes",
+                format!(
+                    "a rotor past {} degrees of freedom (WHIRL_MAX_DOFS) is held sparse for at \
+                     most {MAX_SPARSE_MODES} modes (got {modes})",
+                    limits.max_dofs
+                ),
+            ));
+        }
+        let cost = match sparse {
+            false => solve_cost(size, solves, values),
+            true => sparse_map_cost(size, modes as usize, solves, values),
+        };
+        Task {
             output_unit: self.output_unit.unwrap_or_default(),
             warnings: seal_note(&rotor, "the undamped critical speed map"),
             kind: TaskKind::CriticalMap {
@@ -143,8 +172,24 @@ impl CriticalSpeedMapRequest {
                 stiffness,
                 modes: modes as usize,
             },
-            cost: solve_cost(size, count + 16 * modes as usize, values),
-        })
+            cost,
+        }
+        .bounded(limits, "stiffness")
+    }
+}
+
+/// The critical speed map of a rotor held sparse: per stiffness, a Lanczos run of about
+/// `2 modes + 24` vectors (`16` bytes per coordinate each, with `M` times it) on a sparse
+/// Cholesky factor (about 2 kB per coordinate), work `n (4 j^2 + 300)` a solve.
+fn sparse_map_cost(size: Size, modes: usize, solves: usize, values: u64) -> Cost {
+    let n = size.dofs as u64;
+    let j = 2 * modes as u64 + 24;
+    let response_bytes = values * BYTES_PER_VALUE;
+    Cost {
+        size,
+        peak_bytes: n * (16 * j + 2048) + values * 16 + response_bytes,
+        response_bytes,
+        work: solves as f64 * n as f64 * (4.0 * (j * j) as f64 + 300.0),
     }
 }
 
