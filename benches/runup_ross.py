@@ -24,8 +24,8 @@ reduction (default) and once with "modal_reduction": false (given up after 60 s)
 `run_time_response` with the speed array (Newmark, the only integrator it has for a varying
 speed; dt = 1e-4, the output grid) direct (one run) and pseudo-modal (24 modes, best of 3),
 after a numba warm-up. Both sides' best of several runs: on a shared 2-core machine a single
-run of a few milliseconds varies by 2x and more. Compared: the peak radial amplitude sqrt(x^2 + y^2) at the unbalance node (the
-same samples for every method) and its time.
+run of a few milliseconds varies by 2x and more. Compared: the peak radial amplitude
+sqrt(x^2 + y^2) at the unbalance node (the same samples for every method) and its time.
 
 Conventions: ROSS has 6 dof per node (x, y, z, alpha, beta, theta), so node n is x = 6 n,
 y = 6 n + 1. The unbalance force is ROSS's own `unbalance_force_over_time`,

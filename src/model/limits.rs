@@ -43,6 +43,18 @@ pub struct Limits {
     pub threads: usize,
 }
 
+impl Limits {
+    /// These limits for a rotor held sparse: its size bounded by `max_sparse_dofs` (and the
+    /// memory estimate), not by the dense `max_dofs`.
+    pub fn held_sparse(&self) -> Limits {
+        Limits {
+            max_dofs: self.max_sparse_dofs.max(self.max_dofs),
+            dofs_setting: "WHIRL_MAX_SPARSE_DOFS",
+            ..*self
+        }
+    }
+}
+
 impl Default for Limits {
     fn default() -> Self {
         Limits {

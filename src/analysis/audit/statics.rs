@@ -123,9 +123,14 @@ pub fn static_deflection(
 ) -> Result<StaticResult, AnalysisError> {
     let sys = assembly::beam_shaft(rotor);
     let (k, n) = (&sys.stiffness_rotating, sys.n());
+    // W = -g M e_t, e_t = 1 on every translation.
     let translations: Vec<f64> = (0..n).map(|i| ((i + 1) % 2) as f64).collect();
-    let w: Vec<f64> = sys.mass.mul_vec(&translations);
-    let w: Vec<f64> = w.iter().map(|v| -gravity * v).collect();
+    let w: Vec<f64> = sys
+        .mass
+        .mul_vec(&translations)
+        .iter()
+        .map(|v| -gravity * v)
+        .collect();
     // Every support with its request index, node and stiffness at the speed asked.
     let speed = match held {
         Held::Elastic { speed } => speed,

@@ -16,8 +16,8 @@
 //!
 //! The reduced state is integrated by [`super::exponential`] (ETD-RK4 on stages of frozen
 //! speed: every pole exact, the step held by the spin speed of the loads and the drift's
-//! coupling, output samples inside a step by its dense output); TR-BDF2 only where a stage's state matrix cannot be
-//! diagonalised. Checked against the full model at tolerance 1e-8 in
+//! coupling, output samples inside a step by its dense output); TR-BDF2 only where a stage's
+//! state matrix cannot be diagonalised. Checked against the full model at tolerance 1e-8 in
 //! `tests/runup_reduction.rs`: the reduction moves the response by 4.3e-6 to 2.8e-5 of its
 //! peak.
 //!

@@ -52,10 +52,8 @@ impl SweepRequest {
                 DampingInput::Viscous(_) | DampingInput::Hysteretic(_)
             );
         let relaxed = Limits {
-            max_dofs: limits.max_sparse_dofs.max(limits.max_dofs),
-            dofs_setting: "WHIRL_MAX_SPARSE_DOFS",
             max_states: usize::MAX,
-            ..*limits
+            ..limits.held_sparse()
         };
         let (model, speeds) = self.parse_sweep(if eligible { &relaxed } else { limits })?;
         let size = model.size();

@@ -119,14 +119,8 @@ impl CriticalSpeedMapRequest {
         if modes < 1 {
             bad.push("modes", format!("must be >= 1 (got {modes})"));
         }
-        // Past DENSE_UP_TO coordinates the shaft is held sparse: bounded by `max_sparse_dofs`
-        // and the memory estimate, not by the dense limits.
-        let relaxed = Limits {
-            max_dofs: limits.max_sparse_dofs.max(limits.max_dofs),
-            dofs_setting: "WHIRL_MAX_SPARSE_DOFS",
-            ..*limits
-        };
-        let rotor = beam(&self.rotor, &relaxed, bad)?;
+        // Past 600 coordinates the shaft is held sparse (`map_is_sparse`).
+        let rotor = beam(&self.rotor, &limits.held_sparse(), bad)?;
         let dofs = 2 * rotor.nodes();
         if modes as u64 > dofs as u64 {
             return Err(Invalid::one(
@@ -147,8 +141,8 @@ impl CriticalSpeedMapRequest {
         let solves = count + 16 * modes as usize;
         let sparse = map_is_sparse(dofs, modes as usize);
         if !sparse && dofs > limits.max_dofs {
-            if dofs <= DENSE_UP_TO {
-                // The dense limit's own message.
+            if modes as usize <= MAX_SPARSE_MODES {
+                // Dense for its size: the dense limit's own message.
                 beam(&self.rotor, limits, Invalid::default())?;
             }
             return Err(Invalid::one(
@@ -211,14 +205,8 @@ impl StaticRequest {
         let mut bad = Invalid::default();
         let g = bad.check("gravity", positive(self.gravity.unwrap_or(9.8065)));
         let speed = speed_at(&mut bad, "speed", self.speed.unwrap_or_default());
-        // Held sparse (linear in the mesh), a rotor is bounded by `max_sparse_dofs` and the
-        // memory estimate, not by the dense limits.
-        let relaxed = Limits {
-            max_dofs: limits.max_sparse_dofs.max(limits.max_dofs),
-            dofs_setting: "WHIRL_MAX_SPARSE_DOFS",
-            ..*limits
-        };
-        let rotor = beam(&self.rotor, &relaxed, bad)?;
+        // Held sparse past 600 unknowns (work linear in the mesh).
+        let rotor = beam(&self.rotor, &limits.held_sparse(), bad)?;
         let supports = self.supports.unwrap_or_default();
         if rotor.supports().len() + rotor.general_supports().len() == 0 {
             return Err(Invalid::one("rotor.supports", "the shaft needs supports"));
