@@ -13,8 +13,8 @@ use whirl::analysis::control::Control;
 use whirl::answer::execute;
 use whirl::model::Limits;
 use whirl::model::api::{
-    DampingMatricesRequest, ModalRequest, SweepRequest, TimeResponseRequest,
-    UnbalanceResponseRequest,
+    DampingMatricesRequest, FrequencyResponseRequest, ModalRequest, SweepRequest,
+    TimeResponseRequest, UnbalanceResponseRequest,
 };
 use whirl::model::task::Task;
 use whirl::render::{Format, render};
@@ -91,6 +91,9 @@ fn parse(kind: &str, body: Value, limits: &Limits) -> Task {
             .unwrap()
             .parse(limits),
         "unbalance" => serde_json::from_value::<UnbalanceResponseRequest>(body)
+            .unwrap()
+            .parse(limits),
+        "frequency" => serde_json::from_value::<FrequencyResponseRequest>(body)
             .unwrap()
             .parse(limits),
         _ => unreachable!(),
@@ -231,6 +234,27 @@ fn every_estimate_bounds_the_measured_peak_heap() {
                  "supports": [bearing(0), bearing(800)]},
                "damping": {"model": "viscous"}, "max_frequency": 6000.0,
                "speeds": {"start": 0, "stop": 2000, "count": 20}}),
+    ));
+    // Harmonic responses of a large rotor held sparse: one sparse factor per frequency.
+    let shaft = |elements: usize| {
+        json!({"type": "beam", "materials": steel_plain,
+               "shaft": [{"length": 1.2, "outer_diameter": 0.08, "material": "steel", "elements": elements}],
+               "disks": [{"node": elements / 2, "mass": 20.0, "polar_inertia": 0.3, "transverse_inertia": 0.16}],
+               "supports": [bearing(0), bearing(elements)]})
+    };
+    cases.push((
+        "unbalance, 2000 elements held sparse",
+        "unbalance",
+        json!({"rotor": shaft(2000), "damping": {"model": "hysteretic"},
+               "speeds": {"start": 10, "stop": 2000, "count": 100},
+               "unbalances": [{"node": 1000, "amount": 1e-4}], "nodes": [1000]}),
+    ));
+    cases.push((
+        "frequency, 2000 elements held sparse",
+        "frequency",
+        json!({"rotor": shaft(2000), "damping": {"model": "viscous"}, "speed": 500,
+               "input": {"node": 1000, "direction": 0}, "output": {"node": 1000},
+               "frequencies": {"start": 10, "stop": 2000, "count": 100}}),
     ));
     // Hostile sizes are refused by counting, with nothing proportional allocated: a beam at
     // the dof limit with 12 + 12 branches per mode (26,000 states), and ten million elements.

@@ -373,6 +373,7 @@ pub fn unbalance_data() -> UnbalanceResponseResponse {
         speeds: s,
         nodes,
         reduction: None,
+        full_model: Default::default(),
         note: "Synchronous response; hysteretic damping at omega = Omega.".into(),
         warnings: vec![],
     }
@@ -424,6 +425,7 @@ pub fn frequency_data() -> FrequencyResponseResponse {
     FrequencyResponseResponse {
         output_unit: Default::default(),
         reduction: None,
+        full_model: Default::default(),
         speed: 300.0,
         input_node: 5,
         output_node: 5,

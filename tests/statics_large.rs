@@ -135,30 +135,6 @@ async fn cross_coupled_bearings_of_a_2000_element_shaft() {
     }
 }
 
-/// `rotor` with every shaft segment's elements multiplied by `k`, its nodes renumbered: the
-/// fine rotor and the fine node of each coarse one.
-fn refined(rotor: &Value, k: usize) -> (Value, Vec<usize>) {
-    let mut fine = rotor.clone();
-    let mut map = vec![0];
-    for seg in fine["shaft"].as_array_mut().unwrap() {
-        let last = *map.last().unwrap();
-        if seg.get("coupling").is_some() {
-            map.push(last + 1);
-            continue;
-        }
-        let e = seg["elements"].as_u64().unwrap() as usize;
-        seg["elements"] = json!(e * k);
-        map.extend((1..=e).map(|i| last + i * k));
-    }
-    for list in ["disks", "supports"] {
-        for item in fine[list].as_array_mut().unwrap() {
-            let n = item["node"].as_u64().unwrap() as usize;
-            item["node"] = json!(map[n]);
-        }
-    }
-    (fine, map)
-}
-
 /// The bundled train (three shafts, two couplings, six cross-coupled bearings): 18 elements on
 /// the dense path against 1080 on the sparse one. A uniform segment's element is exact at its
 /// nodes, so the two agree at every coarse node; the reactions hold the whole weight.
@@ -169,7 +145,7 @@ async fn train_of_1080_elements_against_its_coarse_mesh() {
     )
     .unwrap();
     let coarse = example["rotor"].clone();
-    let (fine, map) = refined(&coarse, 60);
+    let (fine, map) = common::refined(&coarse, 60);
     let (a, _) = statics(&json!({"rotor": coarse})).await;
     let (b, seconds) = statics(&json!({"rotor": fine})).await;
     // Each quantity relative to its largest value on the coarse mesh (m, rad).

@@ -18,12 +18,13 @@
 //! basis corrected at the loads and supports only, under the same check.
 
 use super::AnalysisError;
-use super::audit::frequency::{Harmonic, Orbit, Steady};
+use super::audit::frequency::{self, Harmonic, Orbit, Steady};
 use super::control::Control;
 use super::reduction::with_supports;
 use super::unbalance::SteadyUnbalance;
-use crate::damping::DampedModel;
+use crate::damping::{DampedModel, DampingError, large};
 use crate::fem::modal::ModalBasis;
+use crate::linalg::sparse::LuPattern;
 use crate::linalg::{RMat, c64};
 use crate::model::damping::DampingModel;
 use crate::system::RotorSystem;
@@ -57,8 +58,47 @@ pub struct ResponseReduction {
 /// A rotor's harmonic responses: on a checked reduction, or on the full model.
 pub struct Responses<'a> {
     system: &'a RotorSystem,
-    full: &'a DampedModel,
+    full: Full<'a>,
     reduced: Option<Reduced>,
+}
+
+/// The full model of a harmonic response.
+#[derive(Clone, Copy)]
+pub enum Full<'a> {
+    /// Dense, with the modal basis a reduction is drawn from.
+    Dense(&'a DampedModel),
+    /// The viscous or hysteretic model of a large rotor, held sparse: each frequency one
+    /// sparse factor of `Z(i omega)` ([`large::Parts::steady`]), exact and linear in the
+    /// mesh, so never reduced.
+    Sparse(&'a Held),
+}
+
+/// A large rotor's damping model and the pattern of its dynamic stiffness, analysed once.
+pub struct Held {
+    damping: DampingModel,
+    pattern: LuPattern,
+}
+
+impl Held {
+    /// `None` for the damping models without a sparse form (built on a modal basis).
+    pub fn new(
+        system: &RotorSystem,
+        damping: &DampingModel,
+    ) -> Result<Option<Self>, AnalysisError> {
+        let Some(parts) = large::parts(system, damping, 0.0) else {
+            return Ok(None);
+        };
+        Ok(Some(Held {
+            damping: damping.clone(),
+            pattern: parts.pattern()?,
+        }))
+    }
+}
+
+impl<'a> From<&'a DampedModel> for Full<'a> {
+    fn from(model: &'a DampedModel) -> Self {
+        Full::Dense(model)
+    }
 }
 
 struct Reduced {
@@ -74,10 +114,10 @@ pub type Probe<'p> = dyn Fn(&Responses) -> Result<Vec<Orbit>, AnalysisError> + S
 
 impl<'a> Responses<'a> {
     /// The full model.
-    pub fn full(system: &'a RotorSystem, full: &'a DampedModel) -> Self {
+    pub fn full(system: &'a RotorSystem, full: impl Into<Full<'a>>) -> Self {
         Responses {
             system,
-            full,
+            full: full.into(),
             reduced: None,
         }
     }
@@ -90,17 +130,22 @@ impl<'a> Responses<'a> {
     /// The reduction for responses below `bound` (rad/s) with forces and outputs on `dofs`,
     /// checked by `probe` at `checked` (the orbits at those points): the first basis whose
     /// probe is within [`TOLERANCE`] of the full model's; the full model if none at least
-    /// halves the state (or `reduce` is false).
+    /// halves the state (or `reduce` is false), or if it is held sparse.
     pub fn checked(
         system: &'a RotorSystem,
         damping: &DampingModel,
-        full: &'a DampedModel,
+        full: impl Into<Full<'a>>,
         bound: f64,
         dofs: &[usize],
         checked: &[f64],
         probe: &Probe,
     ) -> Result<Self, AnalysisError> {
-        Self::widened(system, damping, full, bound, dofs, checked, probe, 0)
+        match full.into() {
+            Full::Dense(full) => {
+                Self::widened(system, damping, full, bound, dofs, checked, probe, 0)
+            }
+            sparse => Ok(Self::full(system, sparse)),
+        }
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -154,7 +199,7 @@ impl<'a> Responses<'a> {
             let states = model.states();
             let mut r = Responses {
                 system,
-                full,
+                full: Full::Dense(full),
                 reduced: Some(Reduced {
                     system: reduced,
                     model,
@@ -199,12 +244,12 @@ impl<'a> Responses<'a> {
         more: &[f64],
         probe: &Probe,
     ) -> Result<Self, AnalysisError> {
-        let Some(r) = &self.reduced else {
+        let (Some(r), Full::Dense(full)) = (&self.reduced, self.full) else {
             return Ok(self);
         };
         let mut checked = r.info.checked.clone();
         checked.extend(more);
-        let whole = Self::full(self.system, self.full);
+        let whole = Self::full(self.system, full);
         let (exact, approx) = rayon::join(|| probe(&whole), || probe(&self));
         let (exact, approx) = (exact?, approx?);
         let scale = exact
@@ -224,7 +269,7 @@ impl<'a> Responses<'a> {
         Self::widened(
             self.system,
             damping,
-            self.full,
+            full,
             bound,
             dofs,
             &checked,
@@ -234,17 +279,29 @@ impl<'a> Responses<'a> {
     }
 
     /// The model's state at `speed`, shared by every frequency solved there.
-    pub fn at(&self, speed: f64) -> At<'_> {
-        match &self.reduced {
-            Some(r) => At {
-                steady: Steady::at(&r.system, &r.model, speed),
+    pub fn at(&self, speed: f64) -> Result<At<'_>, AnalysisError> {
+        let dense = |steady| Solver::Dense(Box::new(steady));
+        Ok(match (&self.reduced, self.full) {
+            (Some(r), _) => At {
+                solver: dense(Steady::at(&r.system, &r.model, speed)),
                 phi: Some(&r.phi),
             },
-            None => At {
-                steady: Steady::at(self.system, self.full, speed),
+            (None, Full::Dense(full)) => At {
+                solver: dense(Steady::at(self.system, full, speed)),
                 phi: None,
             },
-        }
+            (None, Full::Sparse(held)) => At {
+                solver: Solver::Sparse {
+                    pattern: &held.pattern,
+                    parts: large::parts(self.system, &held.damping, speed).ok_or_else(|| {
+                        AnalysisError::Damping(DampingError::Unsolvable(SPARSE_MODELS.into()))
+                    })?,
+                    speed,
+                    system: self.system,
+                },
+                phi: None,
+            },
+        })
     }
 
     /// The steady orbit of every degree of freedom in `out` under `force` at `omega`, the
@@ -256,14 +313,28 @@ impl<'a> Responses<'a> {
         force: &Harmonic,
         out: &[usize],
     ) -> Result<Vec<Orbit>, AnalysisError> {
-        self.at(speed).orbits(omega, force, out)
+        self.at(speed)?.orbits(omega, force, out)
     }
 }
 
+/// What a large rotor's harmonic response is solved for.
+const SPARSE_MODELS: &str = "a rotor this large has harmonic responses of the viscous and \
+                             hysteretic models only";
+
 /// A model at one spin speed.
 pub struct At<'r> {
-    steady: Steady,
+    solver: Solver<'r>,
     phi: Option<&'r RMat>,
+}
+
+enum Solver<'r> {
+    Dense(Box<Steady>),
+    Sparse {
+        parts: large::Parts,
+        pattern: &'r LuPattern,
+        speed: f64,
+        system: &'r RotorSystem,
+    },
 }
 
 impl At<'_> {
@@ -276,7 +347,8 @@ impl At<'_> {
         out: &[usize],
     ) -> Result<Vec<Orbit>, AnalysisError> {
         let Some(phi) = self.phi else {
-            return self.steady.orbits(omega, force, out);
+            let (a, b) = self.amplitudes(omega, force)?;
+            return Ok(out.iter().map(|&d| Orbit { a: a[d], b: b[d] }).collect());
         };
         let k = phi.ncols();
         // `Phi^T f`, over the loaded coordinates only.
@@ -293,7 +365,7 @@ impl At<'_> {
             forward: project(&force.forward),
             backward: project(&force.backward),
         };
-        let (a, b) = self.steady.amplitudes(omega, &reduced)?;
+        let (a, b) = self.amplitudes(omega, &reduced)?;
         let row = |d: usize, v: &[c64]| -> c64 { (0..k).map(|j| v[j] * phi[(d, j)]).sum() };
         Ok(out
             .iter()
@@ -302,6 +374,27 @@ impl At<'_> {
                 b: row(d, &b),
             })
             .collect())
+    }
+}
+
+impl At<'_> {
+    /// The forward and backward amplitudes of every coordinate solved (modal on a reduction).
+    fn amplitudes(
+        &self,
+        omega: f64,
+        force: &Harmonic,
+    ) -> Result<(Vec<c64>, Vec<c64>), AnalysisError> {
+        match &self.solver {
+            Solver::Dense(steady) => steady.amplitudes(omega, force),
+            Solver::Sparse {
+                parts,
+                pattern,
+                speed,
+                system,
+            } => frequency::amplitudes(system.n(), system.layout(), omega, force, |l, rhs| {
+                Ok(parts.steady(pattern, l, *speed, rhs)?)
+            }),
+        }
     }
 }
 
@@ -342,7 +435,7 @@ pub fn unbalance_force(unbalances: &[SteadyUnbalance], n: usize, w: f64) -> Harm
 pub fn unbalance_sweep<'a>(
     system: &'a RotorSystem,
     damping: &DampingModel,
-    full: &'a DampedModel,
+    full: impl Into<Full<'a>>,
     speeds: &[f64],
     unbalances: &[SteadyUnbalance],
     out: &[usize],
@@ -387,7 +480,7 @@ pub fn unbalance_sweep<'a>(
     grid.swept(
         system,
         damping,
-        full,
+        full.into(),
         &|p| Box::new(probe_at(p)),
         sweep,
         |r| largest(speeds, r),
@@ -412,13 +505,13 @@ impl Grid<'_> {
         &self,
         system: &'a RotorSystem,
         damping: &DampingModel,
-        full: &'a DampedModel,
+        full: Full<'a>,
         probe_at: &dyn Fn(Vec<f64>) -> Box<Probe<'p>>,
         sweep: impl Fn(&Responses<'a>) -> Result<T, AnalysisError>,
         peak: impl Fn(&T) -> Option<f64>,
     ) -> Result<(T, Responses<'a>), AnalysisError> {
         let (bound, mut dofs, edges) = (self.bound, self.dofs, &self.edges);
-        let mut model = if self.reduce && !edges.is_empty() {
+        let mut model = if self.reduce && !edges.is_empty() && matches!(full, Full::Dense(_)) {
             let probe = probe_at(edges.clone());
             let mut model = Responses::checked(system, damping, full, bound, dofs, edges, &*probe)?;
             // The outputs' static responses can keep every basis from halving the state
@@ -484,7 +577,7 @@ fn largest(points: &[f64], response: &[Vec<Orbit>]) -> Option<f64> {
 pub fn frequency_sweep<'a>(
     system: &'a RotorSystem,
     damping: &DampingModel,
-    full: &'a DampedModel,
+    full: impl Into<Full<'a>>,
     speed: f64,
     force: &Harmonic,
     output: usize,
@@ -495,7 +588,7 @@ pub fn frequency_sweep<'a>(
     control.expect(frequencies.len() as u64);
     let probe_at = |points: Vec<f64>| {
         move |r: &Responses| -> Result<Vec<Orbit>, AnalysisError> {
-            let at = r.at(speed);
+            let at = r.at(speed)?;
             let per: Vec<Vec<Orbit>> = points
                 .par_iter()
                 .map(|&w| at.orbits(w, force, &[output]))
@@ -510,7 +603,7 @@ pub fn frequency_sweep<'a>(
     let bound = frequencies.iter().fold(0.0, |a: f64, b| a.max(b.abs()));
     let edges = edges(frequencies);
     let sweep = |model: &Responses| -> Result<Vec<Orbit>, AnalysisError> {
-        let at = model.at(speed);
+        let at = model.at(speed)?;
         frequencies
             .par_iter()
             .map(|&w| {
@@ -531,7 +624,7 @@ pub fn frequency_sweep<'a>(
     grid.swept(
         system,
         damping,
-        full,
+        full.into(),
         &|p| Box::new(probe_at(p)),
         sweep,
         |r| {

@@ -56,6 +56,8 @@ pub enum Outcome {
         model: &'static str,
         /// The checked modal reduction solved; `None` for the full model.
         reduction: Option<ResponseReduction>,
+        /// Whether the full model was held sparse.
+        sparse: bool,
     },
     CriticalMap {
         stiffness: Vec<f64>,
@@ -91,6 +93,8 @@ pub enum Outcome {
         response: Vec<Orbit>,
         model: &'static str,
         reduction: Option<ResponseReduction>,
+        /// Whether the full model was held sparse.
+        sparse: bool,
     },
     /// The report's parts, in the order of its plan: map, static, Campbell, unbalance, then
     /// per compared model its Campbell, Level I and unbalance; and its unbalance cases.
@@ -166,6 +170,36 @@ pub fn build(model: &Model) -> Result<(RotorSystem, DampedModel), RunError> {
     let damped =
         DampedModel::build(&system, &model.damping).map_err(|e| damping_error(e, &model.rotor))?;
     Ok((system, damped))
+}
+
+/// The damping model built dense, or `None` where the rotor is held sparse.
+fn dense_unless(
+    sparse: bool,
+    system: &RotorSystem,
+    model: &Model,
+) -> Result<Option<DampedModel>, RunError> {
+    match sparse {
+        true => Ok(None),
+        false => DampedModel::build(system, &model.damping)
+            .map(Some)
+            .map_err(|e| damping_error(e, &model.rotor)),
+    }
+}
+
+/// What a large rotor's harmonic response is solved for (the parse holds no other sparse).
+const SPARSE_MODELS: &str =
+    "a rotor this large has harmonic responses of the viscous and hysteretic models only";
+
+/// The pattern of a large rotor's dynamic stiffness, where it is held sparse.
+fn held_sparse(
+    sparse: bool,
+    system: &RotorSystem,
+    model: &Model,
+) -> Result<Option<response::Held>, RunError> {
+    match sparse {
+        true => Ok(response::Held::new(system, &model.damping)?),
+        false => Ok(None),
+    }
 }
 
 /// Runs `task`, checking `control` for cancellation and counting progress there.
@@ -297,8 +331,16 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
             nodes,
             range,
             reduce,
+            sparse,
         } => {
-            let (system, damped) = build(model)?;
+            let system = assemble(model)?;
+            let damped = dense_unless(*sparse, &system, model)?;
+            let held = held_sparse(*sparse, &system, model)?;
+            let full = match (&damped, &held) {
+                (Some(d), _) => response::Full::Dense(d),
+                (None, Some(h)) => response::Full::Sparse(h),
+                (None, None) => return Err(RunError::Unsolvable(SPARSE_MODELS.into())),
+            };
             let dof = |n: usize| time::translation(&system, n);
             let loads: Vec<SteadyUnbalance> = unbalances
                 .iter()
@@ -313,7 +355,7 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
             let (response, solved) = response::unbalance_sweep(
                 &system,
                 &model.damping,
-                &damped,
+                full,
                 grid,
                 &loads,
                 &dofs,
@@ -344,6 +386,7 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                 range: *range,
                 model: model.damping.name(),
                 reduction: solved.reduction().cloned(),
+                sparse: *sparse,
             })
         }
         TaskKind::CriticalMap {
@@ -450,14 +493,22 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
             output,
             frequencies,
             reduce,
+            sparse,
         } => {
-            let (system, damped) = build(model)?;
+            let system = assemble(model)?;
+            let damped = dense_unless(*sparse, &system, model)?;
+            let held = held_sparse(*sparse, &system, model)?;
+            let full = match (&damped, &held) {
+                (Some(d), _) => response::Full::Dense(d),
+                (None, Some(h)) => response::Full::Sparse(h),
+                (None, None) => return Err(RunError::Unsolvable(SPARSE_MODELS.into())),
+            };
             let dof = |n: usize| time::translation(&system, n);
             let force = input.1.at(dof(input.0), system.n());
             let (response, solved) = response::frequency_sweep(
                 &system,
                 &model.damping,
-                &damped,
+                full,
                 *speed,
                 &force,
                 dof(*output),
@@ -473,6 +524,7 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                 response,
                 model: model.damping.name(),
                 reduction: solved.reduction().cloned(),
+                sparse: *sparse,
             })
         }
         TaskKind::Report(plan) => audit_report::run_report(plan, control),

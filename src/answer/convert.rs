@@ -194,16 +194,21 @@ pub fn reduction(d: &crate::analysis::reduction::Reduction) -> api::ReductionInf
         checked_speed: d.checked_speed,
         checked_speeds: d.checked_speeds.clone(),
         max_relative_error: d.max_relative_error,
-        full_model: match d.sparse {
-            true => api::Storage::Sparse,
-            false => api::Storage::Dense,
-        },
+        full_model: storage(d.sparse),
         outside_box: d.outside.map(|o| api::OutsideBox {
             poles: o.poles,
             refined: o.refined,
             removed: o.removed,
             largest_change: o.largest_change,
         }),
+    }
+}
+
+/// How a full model was held.
+pub fn storage(sparse: bool) -> api::Storage {
+    match sparse {
+        true => api::Storage::Sparse,
+        false => api::Storage::Dense,
     }
 }
 
@@ -463,6 +468,7 @@ pub fn unbalance_response(
         output_unit: Default::default(),
         warnings: vec![],
         reduction: None,
+        full_model: Default::default(),
         speeds: speeds.to_vec(),
         nodes: nodes
             .iter()

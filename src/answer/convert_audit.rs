@@ -203,6 +203,7 @@ pub fn frequency(
         backward: col(&|o| o.b.norm()),
         model: model.into(),
         reduction: None,
+        full_model: Default::default(),
         warnings: vec![],
     }
 }

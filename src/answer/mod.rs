@@ -61,9 +61,11 @@ impl Output {
                 range,
                 model,
                 reduction,
+                sparse,
             } => {
                 let mut u = convert::unbalance_response(&speeds, &nodes, &response, model);
                 u.reduction = reduction.as_ref().map(convert::response_reduction);
+                u.full_model = convert::storage(sparse);
                 for (n, p) in u.nodes.iter_mut().zip(&peaks) {
                     n.peaks = convert_audit::peaks(p, range);
                 }
@@ -103,10 +105,12 @@ impl Output {
                 response,
                 model,
                 reduction,
+                sparse,
             } => Output::Frequency({
                 let mut f =
                     convert_audit::frequency(speed, input, output, &frequencies, &response, model);
                 f.reduction = reduction.as_ref().map(convert::response_reduction);
+                f.full_model = convert::storage(sparse);
                 f
             }),
             Outcome::Report { parts, cases, sets } => {

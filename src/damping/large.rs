@@ -16,7 +16,8 @@
 //! coordinates) is what shift-invert Arnoldi needs.
 
 use super::hysteretic::patterns;
-use crate::linalg::{LinalgError, Sparse, c64, sparse::Lu};
+use crate::linalg::sparse::{Lu, LuPattern};
+use crate::linalg::{LinalgError, Sparse, c64};
 use crate::model::damping::DampingModel;
 use crate::model::supports::Matrix2;
 use crate::system::{Layout, RotorSystem, point_action};
@@ -35,9 +36,24 @@ pub struct Problem {
     pub signs: Option<(f64, f64, f64)>,
 }
 
-/// The full model's problems at `speed`: one (viscous), four (hysteretic, one per sign
-/// pattern), or `None` for the models built on a modal basis, which have no sparse form.
-pub fn problems(system: &RotorSystem, damping: &DampingModel, speed: f64) -> Option<Vec<Problem>> {
+/// The full model's second-order matrices at one speed, the hysteretic model's loss apart
+/// (its sign depends on the frequency).
+pub struct Parts {
+    /// Size `N` of the matrices (`n`, or `2 n` doubled).
+    pub size: usize,
+    /// Rotor coordinates `n`: rows from `n` on are the conjugate copy (spin `-1`).
+    n: usize,
+    mass: Entries,
+    damping: Entries,
+    stiffness: Entries,
+    /// `K''_n` and `K''_r`, real (empty for the viscous model).
+    loss_n: Entries,
+    loss_r: Entries,
+}
+
+/// The full model's matrices at `speed`, or `None` for the models built on a modal basis,
+/// which have no sparse form.
+pub fn parts(system: &RotorSystem, damping: &DampingModel, speed: f64) -> Option<Parts> {
     let hysteretic = match damping {
         DampingModel::Viscous => false,
         DampingModel::Hysteretic => true,
@@ -103,27 +119,103 @@ pub fn problems(system: &RotorSystem, damping: &DampingModel, speed: f64) -> Opt
             );
         }
     }
-    let problem = |stiffness: Entries, signs| Problem {
+    Some(Parts {
         size,
-        mass: mass.clone(),
-        damping: d.clone(),
-        stiffness,
+        n,
+        mass,
+        damping: d,
+        stiffness: k,
+        loss_n,
+        loss_r,
+    })
+}
+
+impl Parts {
+    /// `K + i a K''_n + i diag(b, c) K''_r` of the sign pattern `(a, b, c)` (`K` alone for the
+    /// viscous model).
+    fn stiffness(&self, (a, b, c): (f64, f64, f64)) -> Entries {
+        let i1 = c64::new(0.0, 1.0);
+        let mut kk = self.stiffness.clone();
+        kk.extend(self.loss_n.iter().map(|&(i, j, v)| (i, j, i1 * a * v)));
+        kk.extend(self.loss_r.iter().map(|&(i, j, v)| {
+            let rot = if i < self.n { b } else { c };
+            (i, j, i1 * rot * v)
+        }));
+        kk
+    }
+
+    /// The entries of `Z(i lambda)` (mass, damping, stiffness in turn, repeated positions
+    /// apart): for the hysteretic model the loss at the signs of `lambda` (supports),
+    /// `lambda - Omega` (rotor rows) and `lambda + Omega` (conjugate rows), `sgn 0 = 0`. Every
+    /// speed and frequency gives entries at the same positions (zeros kept).
+    fn dynamic(&self, lambda: f64, speed: f64) -> Entries {
+        let signs = (sign(lambda), sign(lambda - speed), sign(lambda + speed));
+        let s = c64::new(0.0, lambda);
+        let mut z: Entries = self
+            .mass
+            .iter()
+            .map(|&(i, j, v)| (i, j, s * s * v))
+            .collect();
+        z.extend(self.damping.iter().map(|&(i, j, v)| (i, j, s * v)));
+        z.extend(self.stiffness(signs));
+        z
+    }
+
+    /// `X` of `Z(i lambda) X = rhs`, the steady response at frequency `lambda` (rad/s, of
+    /// either sign), through a factor on `pattern` ([`Parts::pattern`]).
+    pub fn steady(
+        &self,
+        pattern: &LuPattern,
+        lambda: f64,
+        speed: f64,
+        rhs: &[c64],
+    ) -> Result<Vec<c64>, LinalgError> {
+        let values: Vec<c64> = self.dynamic(lambda, speed).iter().map(|e| e.2).collect();
+        let lu = pattern.factor(&values)?;
+        let mut x = rhs.to_vec();
+        lu.solve_in_place(&mut x);
+        if x.iter().any(|v| !(v.re.is_finite() && v.im.is_finite())) {
+            return Err(LinalgError::NonFinite);
+        }
+        Ok(x)
+    }
+
+    /// The positions of `Z`'s entries, analysed once for every speed and frequency.
+    pub fn pattern(&self) -> Result<LuPattern, LinalgError> {
+        let positions: Vec<(usize, usize)> =
+            self.dynamic(1.0, 0.0).iter().map(|e| (e.0, e.1)).collect();
+        LuPattern::new(self.size, &positions)
+    }
+}
+
+/// `-1`, `0` or `1`.
+fn sign(v: f64) -> f64 {
+    if v > 0.0 {
+        1.0
+    } else if v < 0.0 {
+        -1.0
+    } else {
+        0.0
+    }
+}
+
+/// The full model's problems at `speed`: one (viscous), four (hysteretic, one per sign
+/// pattern), or `None` for the models built on a modal basis, which have no sparse form.
+pub fn problems(system: &RotorSystem, damping: &DampingModel, speed: f64) -> Option<Vec<Problem>> {
+    let parts = parts(system, damping, speed)?;
+    let problem = |signs: Option<(f64, f64, f64)>| Problem {
+        size: parts.size,
+        mass: parts.mass.clone(),
+        damping: parts.damping.clone(),
+        stiffness: parts.stiffness(signs.unwrap_or((0.0, 0.0, 0.0))),
         signs,
     };
-    Some(match hysteretic {
-        false => vec![problem(k, None)],
-        true => patterns(layout)
+    Some(match damping {
+        DampingModel::Hysteretic => patterns(system.layout())
             .into_iter()
-            .map(|(a, b, c)| {
-                let mut kk = k.clone();
-                kk.extend(loss_n.iter().map(|&(i, j, v)| (i, j, i1 * a * v)));
-                kk.extend(loss_r.iter().map(|&(i, j, v)| {
-                    let rot = if spin(i) > 0.0 { b } else { c };
-                    (i, j, i1 * rot * v)
-                }));
-                problem(kk, Some((a, b, c)))
-            })
+            .map(|p| problem(Some(p)))
             .collect(),
+        _ => vec![problem(None)],
     })
 }
 

@@ -94,6 +94,12 @@ pub fn sparse_bytes_per_coordinate(doubled: bool) -> u64 {
     2 * 16 * SPARSE_ARNOLDI as u64 + 6 * 8 * vectors / copies as u64 + 2048
 }
 
+/// Heap per coordinate `N` of one harmonic solve of a rotor held sparse: `Z(i omega)`'s
+/// entries as built (three matrices' bands, 32 bytes each) and compressed, its LU factors with
+/// their fill, the model's matrices at the speed, and the right-hand side and solution
+/// (measured about 1.4 kB on a 2000-element shaft on cross-coupled bearings, `tests/memory.rs`).
+pub const SPARSE_HARMONIC_BYTES: u64 = 4096;
+
 /// Most modes of a critical speed map held sparse: each stiffness's Lanczos run keeps about
 /// twice as many vectors of the rotor's size (more, and the dense solve is the cheaper).
 pub const MAX_SPARSE_MODES: usize = 100;

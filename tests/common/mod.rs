@@ -152,3 +152,28 @@ pub fn campbell_poles(camp: &serde_json::Value, i: usize) -> Vec<whirl::linalg::
         })
         .collect()
 }
+
+/// `rotor` with every shaft segment's elements multiplied by `k`, its nodes renumbered: the
+/// fine rotor and the fine node of each coarse one.
+#[allow(dead_code)]
+pub fn refined(rotor: &serde_json::Value, k: usize) -> (serde_json::Value, Vec<usize>) {
+    let mut fine = rotor.clone();
+    let mut map = vec![0];
+    for seg in fine["shaft"].as_array_mut().unwrap() {
+        let last = *map.last().unwrap();
+        if seg.get("coupling").is_some() {
+            map.push(last + 1);
+            continue;
+        }
+        let e = seg["elements"].as_u64().unwrap() as usize;
+        seg["elements"] = serde_json::json!(e * k);
+        map.extend((1..=e).map(|i| last + i * k));
+    }
+    for list in ["disks", "supports"] {
+        for item in fine[list].as_array_mut().unwrap() {
+            let n = item["node"].as_u64().unwrap() as usize;
+            item["node"] = serde_json::json!(map[n]);
+        }
+    }
+    (fine, map)
+}

@@ -215,40 +215,53 @@ impl Steady {
         omega: f64,
         force: &Harmonic,
     ) -> Result<(Vec<c64>, Vec<c64>), AnalysisError> {
-        let n = self.n;
-        let zero = c64::new(0.0, 0.0);
-        let any = |v: &[c64]| v.iter().any(|x| *x != zero);
-        let (a, b): (Vec<c64>, Vec<c64>) = match self.layout {
-            Layout::Doubled => {
-                let rhs: Vec<c64> = force
-                    .forward
-                    .iter()
-                    .copied()
-                    .chain(force.backward.iter().map(|g| g.conj()))
-                    .collect();
-                let z = self.solve(omega, &rhs)?;
-                (z[..n].to_vec(), z[n..2 * n].to_vec())
-            }
-            Layout::Single => {
-                let a = if any(&force.forward) {
-                    self.solve(omega, &force.forward)?
-                } else {
-                    vec![zero; n]
-                };
-                let b = if any(&force.backward) {
-                    // `conj b` solves the equation at `-omega`.
-                    self.solve(-omega, &force.backward)?
-                        .iter()
-                        .map(|c| c.conj())
-                        .collect()
-                } else {
-                    vec![zero; n]
-                };
-                (a, b)
-            }
-        };
-        Ok((a, b))
+        amplitudes(self.n, self.layout, omega, force, |l, rhs| {
+            self.solve(l, rhs)
+        })
     }
+}
+
+/// The forward and backward amplitudes `(a, b)` of the `n` degrees of freedom of a rotor in
+/// `layout` under `force` at `omega`, from `solve(lambda, rhs)`, the solution `Z` of
+/// `D(lambda) Z = rhs` (see the module docs).
+pub(crate) fn amplitudes(
+    n: usize,
+    layout: Layout,
+    omega: f64,
+    force: &Harmonic,
+    solve: impl Fn(f64, &[c64]) -> Result<Vec<c64>, AnalysisError>,
+) -> Result<(Vec<c64>, Vec<c64>), AnalysisError> {
+    let zero = c64::new(0.0, 0.0);
+    let any = |v: &[c64]| v.iter().any(|x| *x != zero);
+    Ok(match layout {
+        Layout::Doubled => {
+            let rhs: Vec<c64> = force
+                .forward
+                .iter()
+                .copied()
+                .chain(force.backward.iter().map(|g| g.conj()))
+                .collect();
+            let z = solve(omega, &rhs)?;
+            (z[..n].to_vec(), z[n..2 * n].to_vec())
+        }
+        Layout::Single => {
+            let a = if any(&force.forward) {
+                solve(omega, &force.forward)?
+            } else {
+                vec![zero; n]
+            };
+            let b = if any(&force.backward) {
+                // `conj b` solves the equation at `-omega`.
+                solve(-omega, &force.backward)?
+                    .iter()
+                    .map(|c| c.conj())
+                    .collect()
+            } else {
+                vec![zero; n]
+            };
+            (a, b)
+        }
+    })
 }
 
 /// The steady orbit of every degree of freedom in `out` under `force` at `omega` (> 0, or 0

@@ -176,6 +176,7 @@ fn report_cases(
                 nodes: nodes.clone(),
                 range: *range,
                 reduce: true,
+                sparse: false,
             },
             cost: plan.unbalance.cost,
             warnings: vec![],

@@ -505,6 +505,11 @@ pub struct FrequencyResponseResponse {
     /// The modal reduction the response was solved on; null when the full model was.
     #[serde(default)]
     pub reduction: Option<super::ResponseReductionInfo>,
+    /// How the full model was held: `dense`, or `sparse` (a rotor past 600 coordinates under
+    /// the viscous or hysteretic model: one sparse factor of its dynamic stiffness per
+    /// frequency, exact, its cost linear in the mesh, never reduced).
+    #[serde(default)]
+    pub full_model: super::Storage,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub warnings: Vec<String>,
 }

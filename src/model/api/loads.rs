@@ -244,6 +244,11 @@ pub struct UnbalanceResponseResponse {
     /// The modal reduction the response was solved on; null when the full model was.
     #[serde(default)]
     pub reduction: Option<ResponseReductionInfo>,
+    /// How the full model was held: `dense`, or `sparse` (a rotor past 600 coordinates under
+    /// the viscous or hysteretic model: one sparse factor of its dynamic stiffness per
+    /// frequency, exact, its cost linear in the mesh, never reduced).
+    #[serde(default)]
+    pub full_model: Storage,
     /// How the damping model treats synchronous whirl.
     pub note: String,
     /// How the model was read where it needed saying: supports held at the ends of their

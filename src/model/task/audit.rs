@@ -2,7 +2,7 @@
 //! Level I and frequency response (the report that runs them all is in `report`).
 
 use super::loads::node_index;
-use super::{Model, Task, TaskKind, speed_at, sweep_cost};
+use super::{Model, Task, TaskKind, sparse_harmonic_cost, speed_at, sweep_cost};
 use crate::linalg::sparse::DENSE_UP_TO;
 use crate::model::api::{
     CriticalSpeedMapRequest, FrequencyResponseRequest, Level1Request, RotorInput, SpeedsInput,
@@ -461,7 +461,7 @@ impl FrequencyResponseRequest {
                 "must be > 0 (the response to a static load is /v1/static)",
             );
         }
-        let model = Model::parse(&self.rotor, &self.damping, limits, bad)?;
+        let (model, sparse) = Model::parse_held(&self.rotor, &self.damping, limits, bad)?;
         let mut bad = Invalid::default();
         let nodes = model.rotor.node_count();
         let input = node_index(&mut bad, "input.node".into(), self.input.node, nodes);
@@ -487,8 +487,12 @@ impl FrequencyResponseRequest {
                 output: output.expect("validated"),
                 frequencies,
                 reduce: self.modal_reduction.unwrap_or(true),
+                sparse,
             },
-            cost: Cost::new(size, 0, 0, extra, count * 10 + 16).with_work(work),
+            cost: match sparse {
+                true => sparse_harmonic_cost(size, limits, count, count * 10 + 16),
+                false => Cost::new(size, 0, 0, extra, count * 10 + 16).with_work(work),
+            },
         }
         .bounded(limits, "frequencies")
     }

@@ -210,7 +210,7 @@ impl UnbalanceResponseRequest {
         if self.unbalances.is_empty() {
             bad.push("unbalances", "needs at least one unbalance");
         }
-        let model = Model::parse(&self.rotor, &self.damping, limits, bad)?;
+        let (model, sparse) = Model::parse_held(&self.rotor, &self.damping, limits, bad)?;
         let mut bad = Invalid::default();
         let nodes = model.rotor.node_count();
         let mut unbalances = vec![];
@@ -240,7 +240,11 @@ impl UnbalanceResponseRequest {
         // Per thread: the state matrix, the system and its LU.
         let extra = threads * 3 * 16 * s * s + count * out.len() as u64 * 16;
         let work = count as f64 * (s * s * s) as f64 * 3.0;
-        let cost = Cost::new(size, 0, 0, extra, values).with_work(work);
+        // The sweep, then at most about two sweeps more to refine the peaks.
+        let cost = match sparse {
+            true => sparse_harmonic_cost(size, limits, 3 * count + 64, values),
+            false => Cost::new(size, 0, 0, extra, values).with_work(work),
+        };
         let (lo, hi) = speeds.range();
         Task {
             output_unit: self.output_unit.unwrap_or_default(),
@@ -252,6 +256,7 @@ impl UnbalanceResponseRequest {
                 nodes: out,
                 range,
                 reduce: self.modal_reduction.unwrap_or(true),
+                sparse,
             },
             cost,
         }

@@ -12,8 +12,8 @@ use super::damping::BranchSet;
 use super::damping::DampingModel;
 use super::error::{Invalid, finite, non_negative, positive};
 use super::limits::{
-    BATCH_PER_THREAD, Cost, Limits, SPARSE_FROM, SPARSE_REDUCED_STATES, Size,
-    sparse_bytes_per_coordinate,
+    BATCH_PER_THREAD, BYTES_PER_VALUE, Cost, Limits, SPARSE_FROM, SPARSE_HARMONIC_BYTES,
+    SPARSE_REDUCED_STATES, Size, sparse_bytes_per_coordinate,
 };
 use super::loads::{Excitation, Force, Pwl, SpeedLaw, TimeSpec, Unbalance, sample_count};
 use super::rotor::BeamRotor;
@@ -66,6 +66,46 @@ impl Model {
         let model = Model { rotor, damping };
         model.check_states(limits, &mut bad);
         bad.into_result(|| model)
+    }
+
+    /// [`Model::parse`] of a forced response, the rotor held sparse where it may be: the
+    /// viscous and hysteretic models (the rotor's own second-order system) of a beam rotor
+    /// without Guyan reduction past [`SPARSE_FROM`] coordinates, whose size is then bounded by
+    /// `max_sparse_dofs` and the memory estimate; any other is parsed against the dense limits.
+    /// `(model, held sparse)`.
+    pub fn parse_held(
+        rotor: &RotorInput,
+        damping: &DampingInput,
+        limits: &Limits,
+        bad: Invalid,
+    ) -> Result<(Self, bool), Invalid> {
+        if matches!(
+            damping,
+            DampingInput::Viscous(_) | DampingInput::Hysteretic(_)
+        ) {
+            let relaxed = Limits {
+                max_states: usize::MAX,
+                ..limits.held_sparse()
+            };
+            if let Ok(model) = Model::parse(rotor, damping, &relaxed, bad.clone())
+                && model.held_sparse()
+            {
+                return Ok((model, true));
+            }
+        }
+        Ok((Model::parse(rotor, damping, limits, bad)?, false))
+    }
+
+    /// Whether this model may be held sparse (see [`Model::parse_held`]).
+    fn held_sparse(&self) -> bool {
+        let size = self.size();
+        matches!(self.rotor, Rotor::Beam(_))
+            && matches!(
+                self.damping,
+                DampingModel::Viscous | DampingModel::Hysteretic
+            )
+            && size.dofs > SPARSE_FROM
+            && size.assembled == size.dofs
     }
 
     /// Sizes of the model as solved, with `branches` per nonviscous damper (its own when
@@ -229,6 +269,8 @@ pub enum TaskKind {
         range: Option<(f64, f64)>,
         /// Whether a checked modal reduction may be used.
         reduce: bool,
+        /// Whether the rotor is held sparse ([`Model::parse_held`]).
+        sparse: bool,
     },
     CriticalMap {
         rotor: BeamRotor,
@@ -265,6 +307,8 @@ pub enum TaskKind {
         frequencies: Vec<f64>,
         /// Whether a checked modal reduction may be used.
         reduce: bool,
+        /// Whether the rotor is held sparse ([`Model::parse_held`]).
+        sparse: bool,
     },
     Report(Box<ReportPlan>),
 }
@@ -402,6 +446,25 @@ fn sparse_sweep_cost(
     }
     .with_work(dense.work + SPARSE_WORK * size.dofs as f64)
 }
+
+/// A harmonic response of a rotor held sparse: one sparse factor of `Z(i omega)` per compute
+/// thread (and the model's matrices at the speed), each linear in the coordinates
+/// ([`SPARSE_HARMONIC_BYTES`]), `solves` of them.
+fn sparse_harmonic_cost(size: Size, limits: &Limits, solves: u64, values: u64) -> Cost {
+    let n = size.dofs as u64;
+    let threads = limits.threads.max(1) as u64;
+    let response_bytes = values * BYTES_PER_VALUE;
+    Cost {
+        size,
+        peak_bytes: (threads + 1) * n * SPARSE_HARMONIC_BYTES + values * 16 + response_bytes,
+        response_bytes,
+        work: solves as f64 * SPARSE_HARMONIC_WORK * n as f64,
+    }
+}
+
+/// Flops per coordinate of one sparse harmonic solve (factor and substitution), for the work
+/// estimate only.
+const SPARSE_HARMONIC_WORK: f64 = 2e3;
 
 /// Largest reduced model of a sparse sweep.
 pub fn sparse_states(limits: &Limits) -> usize {
