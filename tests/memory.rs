@@ -256,6 +256,14 @@ fn every_estimate_bounds_the_measured_peak_heap() {
                "input": {"node": 1000, "direction": 0}, "output": {"node": 1000},
                "frequencies": {"start": 10, "stop": 2000, "count": 100}}),
     ));
+    cases.push((
+        "time, 2000 elements held sparse (run-up)",
+        "time",
+        json!({"rotor": shaft(2000), "damping": {"model": "viscous"},
+               "speed_profile": [[0, 0], [2, 1500]],
+               "unbalances": [{"node": 1000, "amount": 1e-4}],
+               "duration": 2, "output_interval": 0.001, "nodes": [1000]}),
+    ));
     // Hostile sizes are refused by counting, with nothing proportional allocated: a beam at
     // the dof limit with 12 + 12 branches per mode (26,000 states), and ten million elements.
     let steel = json!({"steel": {"young_modulus": 2.1e11, "density": 7800, "poisson_ratio": 0.3, "loss_factor": 0.01}});

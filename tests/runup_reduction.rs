@@ -130,7 +130,7 @@ fn compare(name: &str, system: &RotorSystem, model: &str, node: usize) {
     // The viscous model reduces without its dense full model (Lanczos modes, the check through
     // sparse factors): the same reduction, so the same response to round-off of the basis.
     if model == "viscous" {
-        let sparse = reduced::solve_sparse(system, &damping, &spec, true, &control).unwrap();
+        let sparse = reduced::solve_sparse(system, &damping, &spec, true, false, &control).unwrap();
         if info.full_states < whirl::analysis::large::SPARSE_FROM_STATES {
             assert!(sparse.is_none(), "{name}: {info:?}");
             return;
@@ -140,7 +140,7 @@ fn compare(name: &str, system: &RotorSystem, model: &str, node: usize) {
             si.sparse && si.modes == info.modes && si.states == info.states,
             "{si:?}"
         );
-        let (rst, _) = reduced::solve_sparse(system, &damping, &tight, true, &control)
+        let (rst, _) = reduced::solve_sparse(system, &damping, &tight, true, false, &control)
             .unwrap()
             .unwrap();
         let apart = rs.nodes[0]

@@ -190,6 +190,11 @@ fn dense_unless(
 const SPARSE_MODELS: &str =
     "a rotor this large has harmonic responses of the viscous and hysteretic models only";
 
+/// Why a large rotor's time response failed: it is integrated on a checked reduction only.
+const NOT_REDUCED: &str = "no modal reduction of this rotor passed the check against its full \
+    model (every pole in the band within 1e-3 of its decay rate), and a rotor this large is not \
+    integrated on its full model: use fewer elements";
+
 /// The pattern of a large rotor's dynamic stiffness, where it is held sparse.
 fn held_sparse(
     sparse: bool,
@@ -311,12 +316,25 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                 model: model.damping.name(),
             })
         }
-        TaskKind::Time { model, spec } => {
+        TaskKind::Time {
+            model,
+            spec,
+            sparse,
+        } => {
             let system = assemble(model)?;
-            let sparse =
-                time::reduced::solve_sparse(&system, &model.damping, spec, spec.reduce, control)?;
-            if let Some((r, reduction)) = sparse {
+            let reduced = time::reduced::solve_sparse(
+                &system,
+                &model.damping,
+                spec,
+                spec.reduce,
+                *sparse,
+                control,
+            )?;
+            if let Some((r, reduction)) = reduced {
                 return Ok(Outcome::Time(r, Some(reduction)));
+            }
+            if *sparse {
+                return Err(RunError::Unsolvable(NOT_REDUCED.into()));
             }
             let damped = DampedModel::build(&system, &model.damping)
                 .map_err(|e| damping_error(e, &model.rotor))?;

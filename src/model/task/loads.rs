@@ -81,7 +81,10 @@ impl TimeResponseRequest {
             (Some(d), Some(h)) => Some(sample_count(d, h)),
             _ => None,
         };
-        let model = Model::parse(&self.rotor, &self.damping, limits, bad)?;
+        // Held sparse, a rotor is integrated on a checked reduction only.
+        let reduce = self.modal_reduction.unwrap_or(true);
+        let (model, sparse) =
+            Model::parse_held_if(reduce, &self.rotor, &self.damping, limits, bad)?;
         let mut bad = Invalid::default();
         let nodes = model.rotor.node_count();
         let node = |bad: &mut Invalid, at: String, k: i64| node_index(bad, at, k, nodes);
@@ -149,7 +152,7 @@ impl TimeResponseRequest {
             nodes: out,
             tolerance: tolerance.expect("validated"),
             max_steps: limits.max_steps,
-            reduce: self.modal_reduction.unwrap_or(true),
+            reduce,
         };
         // The step count before any work: a fast run-up is refused here, not after minutes of
         // integration at the step limit.
@@ -191,12 +194,26 @@ impl TimeResponseRequest {
             (samples as f64).max(1e4).max(fewest)
         };
         let work = size.eigen_work() + steps * 8.0 * (s * s) as f64;
-        let cost = Cost::new(size, 2, 0, extra, values).with_work(work);
+        let cost = match sparse {
+            true => {
+                // The outputs' histories, and the reduced model's as `extra` counts the full's.
+                let r = sparse_states(limits) as u64;
+                let extra = samples as u64 * reported as u64 * 16
+                    + 16 * r * (loads + reported as u64 + 16)
+                    + 4 * r * r;
+                sparse_time_cost(size, model.rotor.doubled(), limits, extra, values)
+            }
+            false => Cost::new(size, 2, 0, extra, values).with_work(work),
+        };
         let (lo, hi) = spec.speed.range(spec.duration);
         Task {
             output_unit: Default::default(),
             warnings: model.warnings(lo, hi),
-            kind: TaskKind::Time { model, spec },
+            kind: TaskKind::Time {
+                model,
+                spec,
+                sparse,
+            },
             cost,
         }
         .bounded(limits, "output_interval")

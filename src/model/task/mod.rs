@@ -79,10 +79,23 @@ impl Model {
         limits: &Limits,
         bad: Invalid,
     ) -> Result<(Self, bool), Invalid> {
-        if matches!(
-            damping,
-            DampingInput::Viscous(_) | DampingInput::Hysteretic(_)
-        ) {
+        Self::parse_held_if(true, rotor, damping, limits, bad)
+    }
+
+    /// [`Model::parse_held`] where `allow`, else [`Model::parse`].
+    pub fn parse_held_if(
+        allow: bool,
+        rotor: &RotorInput,
+        damping: &DampingInput,
+        limits: &Limits,
+        bad: Invalid,
+    ) -> Result<(Self, bool), Invalid> {
+        if allow
+            && matches!(
+                damping,
+                DampingInput::Viscous(_) | DampingInput::Hysteretic(_)
+            )
+        {
             let relaxed = Limits {
                 max_states: usize::MAX,
                 ..limits.held_sparse()
@@ -258,6 +271,9 @@ pub enum TaskKind {
     Time {
         model: Model,
         spec: TimeSpec,
+        /// Whether the rotor is held sparse ([`Model::parse_held`]): integrated on a reduction
+        /// checked through sparse factors, never on its full model.
+        sparse: bool,
     },
     Unbalance {
         model: Model,
@@ -465,6 +481,28 @@ fn sparse_harmonic_cost(size: Size, limits: &Limits, solves: u64, values: u64) -
 /// Flops per coordinate of one sparse harmonic solve (factor and substitution), for the work
 /// estimate only.
 const SPARSE_HARMONIC_WORK: f64 = 2e3;
+
+/// A time response of a rotor held sparse: its reduction found and checked through sparse
+/// factors (linear in the coordinates, [`sparse_bytes_per_coordinate`]) and integrated as a
+/// dense model of at most [`sparse_states`] states, with `extra` bytes besides (histories,
+/// outputs) and `values` answered.
+fn sparse_time_cost(size: Size, doubled: bool, limits: &Limits, extra: u64, values: u64) -> Cost {
+    let dofs = (sparse_states(limits) / 2).min(size.dofs);
+    let reduced = Size {
+        assembled: dofs,
+        dofs,
+        internal: 0,
+        ..size
+    };
+    let dense = Cost::new(reduced, 2, 0, extra, values);
+    let linear = size.dofs as u64 * sparse_bytes_per_coordinate(doubled);
+    Cost {
+        size,
+        peak_bytes: dense.peak_bytes + linear,
+        ..dense
+    }
+    .with_work(reduced.eigen_work() + SPARSE_WORK * size.dofs as f64)
+}
 
 /// Largest reduced model of a sparse sweep.
 pub fn sparse_states(limits: &Limits) -> usize {
