@@ -45,7 +45,19 @@ fn case_of(name: &str, rotor: Value, nodes: &[usize], models: &[Value]) {
             .collect();
         let control = Control::default();
         let t = std::time::Instant::now();
-        let r = level1_reduced(&system, &model, speed, &at, &[], 11, None, true, &control).unwrap();
+        let r = level1_reduced(
+            &system,
+            &model,
+            speed,
+            &at,
+            &[],
+            11,
+            None,
+            true,
+            false,
+            &control,
+        )
+        .unwrap();
         let reduced_time = t.elapsed();
         let info = r
             .reduction

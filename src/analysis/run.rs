@@ -449,6 +449,7 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
             density,
             extra,
             reduce,
+            sparse,
         } => {
             let system = assemble(model)?;
             let placing: Vec<(usize, f64)> = at
@@ -464,6 +465,7 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                 21,
                 *qa,
                 *reduce,
+                *sparse,
                 control,
             )
             .map_err(|e| rigid_body(e, &model.rotor))?;

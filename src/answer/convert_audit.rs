@@ -147,6 +147,7 @@ pub fn level1_reduction(
         full_states: d.full_states,
         checked_cross_coupling: d.checked_q,
         max_relative_error: d.max_relative_error,
+        full_model: super::convert::storage(d.sparse),
     }
 }
 

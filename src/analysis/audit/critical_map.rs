@@ -144,15 +144,53 @@ pub fn rigid_first(rotor: &BeamRotor) -> Result<f64, AnalysisError> {
         held[2 * node] = true;
     }
     let free: Vec<usize> = (0..s.n()).filter(|&i| !held[i]).collect();
-    let pick = |a: &RMat| RMat::from_fn(free.len(), free.len(), |i, j| a[(free[i], free[j])]);
-    let modes = linalg::symmetric_modes(
-        &pick(&s.stiffness_rotating.to_dense()),
-        &pick(&s.mass.to_dense()),
-    )?;
-    Ok(modes
+    // Past 600 coordinates by Lanczos on the sparse pencil (as the map), linear in the mesh.
+    let w2 = if map_is_sparse(s.n(), 1) {
+        let mut index = vec![usize::MAX; s.n()];
+        for (k, &i) in free.iter().enumerate() {
+            index[i] = k;
+        }
+        let pick = |a: &Sparse| {
+            let kept: Vec<(usize, usize, f64)> = a
+                .entries()
+                .filter(|&(i, j, _)| !held[i] && !held[j])
+                .map(|(i, j, v)| (index[i], index[j], v))
+                .collect();
+            Sparse::from_triplets(free.len(), free.len(), &kept)
+        };
+        lowest_sparse(&pick(&s.stiffness_rotating), &pick(&s.mass), 1)?
+    } else {
+        let pick = |a: &RMat| RMat::from_fn(free.len(), free.len(), |i, j| a[(free[i], free[j])]);
+        linalg::symmetric_modes(
+            &pick(&s.stiffness_rotating.to_dense()),
+            &pick(&s.mass.to_dense()),
+        )?
         .omega_squared
-        .first()
-        .map_or(0.0, |w2| w2.max(0.0).sqrt()))
+    };
+    Ok(w2.first().map_or(0.0, |w2| w2.max(0.0).sqrt()))
+}
+
+/// The lowest `count` (at least) `w^2` of the sparse pencil `(kk, m)`. Where `kk` is not
+/// positive definite (springs too soft or too few to hold the shaft, or negative), the pencil
+/// is shifted by `s M` (`s` = 1e-8 of the largest `K_ii / M_ii`, below the shaft's lowest
+/// bending mode on any practical mesh) and `s` taken off again.
+fn lowest_sparse(kk: &Sparse, m: &Sparse, count: usize) -> Result<Vec<f64>, AnalysisError> {
+    let n = kk.nrows();
+    let enough = |w2: &[f64]| w2.len() >= count;
+    match lanczos::lowest_modes(kk, m, enough) {
+        Ok(modes) => Ok(modes.omega_squared),
+        Err(LinalgError::NotPositiveDefinite) => {
+            let s = 1e-8
+                * (0..n)
+                    .map(|i| kk.get(i, i) / m.get(i, i))
+                    .filter(|r| r.is_finite())
+                    .fold(0.0, f64::max);
+            let shifted = kk.plus(m, s);
+            let modes = lanczos::lowest_modes(&shifted, m, enough)?;
+            Ok(modes.omega_squared.iter().map(|w2| w2 - s).collect())
+        }
+        Err(e) => Err(e.into()),
+    }
 }
 
 /// The shaft with one spring `k` per support on its translation.
@@ -229,29 +267,12 @@ impl Springs {
             .collect())
     }
 
-    /// The lowest `w^2` of the sparse pencil with springs `k`. Where `K + k E` is not positive
-    /// definite (springs too soft or too few to hold the shaft, or negative), the pencil is
-    /// shifted by `s M` (`s` = 1e-8 of the largest `K_ii / M_ii`, below the shaft's lowest
-    /// bending mode on any practical mesh) and `s` taken off again.
+    /// The lowest `w^2` of the sparse pencil with springs `k` ([`lowest_sparse`]).
     fn lowest(&self, k0: &Sparse, m: &Sparse, k: f64) -> Result<Vec<f64>, AnalysisError> {
         let n = k0.nrows();
         let springs: Vec<(usize, usize, f64)> = self.dofs.iter().map(|&d| (d, d, k)).collect();
         let kk = k0.plus(&Sparse::from_triplets(n, n, &springs), 1.0);
-        let enough = |w2: &[f64]| w2.len() >= self.modes;
-        match lanczos::lowest_modes(&kk, m, enough) {
-            Ok(modes) => Ok(modes.omega_squared),
-            Err(LinalgError::NotPositiveDefinite) => {
-                let s = 1e-8
-                    * (0..n)
-                        .map(|i| kk.get(i, i) / m.get(i, i))
-                        .filter(|r| r.is_finite())
-                        .fold(0.0, f64::max);
-                let shifted = kk.plus(m, s);
-                let modes = lanczos::lowest_modes(&shifted, m, enough)?;
-                Ok(modes.omega_squared.iter().map(|w2| w2 - s).collect())
-            }
-            Err(e) => Err(e.into()),
-        }
+        lowest_sparse(&kk, m, self.modes)
     }
 }
 

@@ -28,7 +28,7 @@ use crate::analysis::AnalysisError;
 use crate::analysis::control::Control;
 use crate::analysis::large;
 use crate::analysis::reduction::{self, Criterion, TOLERANCE};
-use crate::damping::DampedModel;
+use crate::damping::{DampedModel, DampingError};
 use crate::fem::modal::ModalBasis;
 use crate::model::damping::DampingModel;
 use crate::system::{Placement, RotorSystem};
@@ -56,6 +56,8 @@ pub struct Level1Reduction {
     pub checked_q: f64,
     /// Largest `|s_reduced - s_full| / |s_full|` over the poles in the band there.
     pub max_relative_error: f64,
+    /// Whether the full model was held sparse.
+    pub sparse: bool,
 }
 
 /// A Level I screen: the grid (given, or [`level1::auto_range`]'s of `count` points), its
@@ -68,7 +70,8 @@ pub struct Screened {
 }
 
 /// Level I of `system` on a checked reduction, or on the full model where none passes (or
-/// where `reduce` is false).
+/// where `reduce` is false); a rotor `held` sparse (past the dense limits) is never solved on
+/// its full model: an error where no reduction passes.
 #[allow(clippy::too_many_arguments)]
 pub fn level1_reduced(
     system: &RotorSystem,
@@ -79,6 +82,7 @@ pub fn level1_reduced(
     count: usize,
     qa: Option<f64>,
     reduce: bool,
+    held: bool,
     control: &Control,
 ) -> Result<Screened, AnalysisError> {
     let dofs: Vec<usize> = at.iter().map(|&(d, _)| d).collect();
@@ -97,6 +101,14 @@ pub fn level1_reduced(
         Ok((qs, result, qa))
     };
     let whole = || -> Result<Screened, AnalysisError> {
+        if held {
+            return Err(AnalysisError::Damping(DampingError::Unsolvable(
+                "no modal reduction of this rotor passed the Level I check against its full \
+                 model, and a rotor this large is not solved on its full model: use fewer \
+                 elements"
+                    .into(),
+            )));
+        }
         let first = FirstForward::new(system, damping, speed, at)?;
         let (qs, result, qa) = run(&first)?;
         Ok(Screened {
@@ -194,6 +206,7 @@ pub fn level1_reduced(
                 full_states: red.info.full_states,
                 checked_q: q,
                 max_relative_error: error,
+                sparse: matches!(full, Full::Sparse(_)),
             }),
         });
     }

@@ -332,6 +332,11 @@ pub struct Level1ReductionInfo {
     /// 1.5 times the first forward mode's modulus), both ways (at most 1e-5, else the full
     /// model is solved).
     pub max_relative_error: f64,
+    /// How the full model was held for the reduction and its check: `dense`, or `sparse`
+    /// (the viscous and hysteretic models of 100 states or more: Lanczos modes, sparse
+    /// factors, no dense matrix of the rotor's size).
+    #[serde(default)]
+    pub full_model: super::Storage,
 }
 
 /// Answer of `POST /v1/level1`.

@@ -2,7 +2,7 @@
 //! Level I and frequency response (the report that runs them all is in `report`).
 
 use super::loads::node_index;
-use super::{Model, Task, TaskKind, sparse_harmonic_cost, speed_at, sweep_cost};
+use super::{Model, Task, TaskKind, sparse_harmonic_cost, sparse_sweep_cost, speed_at, sweep_cost};
 use crate::linalg::sparse::DENSE_UP_TO;
 use crate::model::api::{
     CriticalSpeedMapRequest, FrequencyResponseRequest, Level1Request, RotorInput, SpeedsInput,
@@ -350,9 +350,24 @@ impl Level1Request {
             ),
             None => Some(vec![]),
         };
-        let model = Model::parse(&self.rotor, &self.damping, limits, bad)?;
+        // Held sparse, Level I runs on a checked reduction only.
+        let reduce = self.modal_reduction.unwrap_or(true);
+        let (model, sparse) =
+            Model::parse_held_if(reduce, &self.rotor, &self.damping, limits, bad)?;
         let mut bad = Invalid::default();
         let (at, qa) = placing(self, model.rotor.node_count(), speed, &mut bad);
+        if sparse && qa.is_some() {
+            bad.push(
+                "machine",
+                format!(
+                    "Level II (which runs with the machine's stages) holds the rotor dense, and \
+                     this one has {} complex degrees of freedom, more than the limit of {} \
+                     (WHIRL_MAX_DOFS): give `node` or `nodes` for Level I alone",
+                    model.rotor.dof_count(),
+                    limits.max_dofs
+                ),
+            );
+        }
         let density = match self.machine.as_ref().and_then(|m| m.mean_gas_density) {
             Some(rho) => bad.check("machine.mean_gas_density", positive(rho)),
             None => None,
@@ -384,6 +399,7 @@ impl Level1Request {
         // The skew supports are isotropic: the coordinates stay as they are.
         size.points = size.points.max(1);
         let solves = qs.len().max(AUTO_COUNT) + 60;
+        let model_doubled = model.rotor.doubled();
         let values = 3 * qs.len().max(AUTO_COUNT) as u64 + 32;
         Ok(Task {
             output_unit: self.output_unit.unwrap_or_default(),
@@ -396,10 +412,14 @@ impl Level1Request {
                 qa,
                 density,
                 extra,
-                reduce: self.modal_reduction.unwrap_or(true),
+                reduce,
+                sparse,
             },
-            cost: sweep_cost(size, 1, limits, false, values)
-                .with_work(size.eigen_work() * solves as f64),
+            cost: match sparse {
+                true => sparse_sweep_cost(size, model_doubled, solves, limits, values),
+                false => sweep_cost(size, 1, limits, false, values)
+                    .with_work(size.eigen_work() * solves as f64),
+            },
         })
     }
 }

@@ -314,6 +314,9 @@ pub enum TaskKind {
         extra: Vec<(usize, f64)>,
         /// Whether Level I may run on a checked modal reduction.
         reduce: bool,
+        /// Whether the rotor is held sparse ([`Model::parse_held`]): Level I on a reduction
+        /// checked through sparse factors only, no Level II.
+        sparse: bool,
     },
     Frequency {
         model: Model,
