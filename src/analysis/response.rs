@@ -99,6 +99,21 @@ impl Held {
     }
 }
 
+/// What a [`Full`] borrows: a dense model, or a large rotor's [`Held`].
+pub enum Owned {
+    Dense(DampedModel),
+    Sparse(Held),
+}
+
+impl Owned {
+    pub fn full(&self) -> Full<'_> {
+        match self {
+            Owned::Dense(d) => Full::Dense(d),
+            Owned::Sparse(h) => Full::Sparse(h),
+        }
+    }
+}
+
 impl<'a> From<&'a DampedModel> for Full<'a> {
     fn from(model: &'a DampedModel) -> Self {
         Full::Dense(model)

@@ -172,20 +172,6 @@ pub fn build(model: &Model) -> Result<(RotorSystem, DampedModel), RunError> {
     Ok((system, damped))
 }
 
-/// The damping model built dense, or `None` where the rotor is held sparse.
-fn dense_unless(
-    sparse: bool,
-    system: &RotorSystem,
-    model: &Model,
-) -> Result<Option<DampedModel>, RunError> {
-    match sparse {
-        true => Ok(None),
-        false => DampedModel::build(system, &model.damping)
-            .map(Some)
-            .map_err(|e| damping_error(e, &model.rotor)),
-    }
-}
-
 /// What a large rotor's harmonic response is solved for (the parse holds no other sparse).
 const SPARSE_MODELS: &str =
     "a rotor this large has harmonic responses of the viscous and hysteretic models only";
@@ -195,16 +181,23 @@ const NOT_REDUCED: &str = "no modal reduction of this rotor passed the check aga
     model (every pole in the band within 1e-3 of its decay rate), and a rotor this large is not \
     integrated on its full model: use fewer elements";
 
-/// The pattern of a large rotor's dynamic stiffness, where it is held sparse.
-fn held_sparse(
+/// A harmonic response's full model: the damping model built dense, or where the rotor is held
+/// sparse the pattern of its dynamic stiffness.
+fn harmonic_model(
     sparse: bool,
     system: &RotorSystem,
     model: &Model,
-) -> Result<Option<response::Held>, RunError> {
-    match sparse {
-        true => Ok(response::Held::new(system, &model.damping)?),
-        false => Ok(None),
-    }
+) -> Result<response::Owned, RunError> {
+    Ok(match sparse {
+        true => response::Owned::Sparse(
+            response::Held::new(system, &model.damping)?
+                .ok_or_else(|| RunError::Unsolvable(SPARSE_MODELS.into()))?,
+        ),
+        false => response::Owned::Dense(
+            DampedModel::build(system, &model.damping)
+                .map_err(|e| damping_error(e, &model.rotor))?,
+        ),
+    })
 }
 
 /// Runs `task`, checking `control` for cancellation and counting progress there.
@@ -352,13 +345,8 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
             sparse,
         } => {
             let system = assemble(model)?;
-            let damped = dense_unless(*sparse, &system, model)?;
-            let held = held_sparse(*sparse, &system, model)?;
-            let full = match (&damped, &held) {
-                (Some(d), _) => response::Full::Dense(d),
-                (None, Some(h)) => response::Full::Sparse(h),
-                (None, None) => return Err(RunError::Unsolvable(SPARSE_MODELS.into())),
-            };
+            let owned = harmonic_model(*sparse, &system, model)?;
+            let full = owned.full();
             let dof = |n: usize| time::translation(&system, n);
             let loads: Vec<SteadyUnbalance> = unbalances
                 .iter()
@@ -516,13 +504,8 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
             sparse,
         } => {
             let system = assemble(model)?;
-            let damped = dense_unless(*sparse, &system, model)?;
-            let held = held_sparse(*sparse, &system, model)?;
-            let full = match (&damped, &held) {
-                (Some(d), _) => response::Full::Dense(d),
-                (None, Some(h)) => response::Full::Sparse(h),
-                (None, None) => return Err(RunError::Unsolvable(SPARSE_MODELS.into())),
-            };
+            let owned = harmonic_model(*sparse, &system, model)?;
+            let full = owned.full();
             let dof = |n: usize| time::translation(&system, n);
             let force = input.1.at(dof(input.0), system.n());
             let (response, solved) = response::frequency_sweep(

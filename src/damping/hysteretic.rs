@@ -40,6 +40,18 @@ pub fn consistent((a, b, c): (f64, f64, f64), s: c64, speed: f64) -> bool {
     a * w > 0.0 && b * (w - speed) > 0.0 && (c == 0.0 || c * (w + speed) > 0.0)
 }
 
+/// `-1`, `0` or `1`: the sign the hysteretic loss takes at a frequency (`sgn 0 = 0`, unlike
+/// [`f64::signum`]).
+pub fn sign(v: f64) -> f64 {
+    if v > 0.0 {
+        1.0
+    } else if v < 0.0 {
+        -1.0
+    } else {
+        0.0
+    }
+}
+
 /// The sign patterns of a layout: `(a, b, c)`.
 pub fn patterns(layout: Layout) -> Vec<(f64, f64, f64)> {
     match layout {

@@ -15,7 +15,7 @@
 //! `Z(sigma) x = -M b1 - (sigma M + D) b2` (`harmonic::ShiftInvert` without internal
 //! coordinates) is what shift-invert Arnoldi needs.
 
-use super::hysteretic::patterns;
+use super::hysteretic::{patterns, sign};
 use crate::linalg::sparse::{Lu, LuPattern};
 use crate::linalg::{LinalgError, Sparse, c64};
 use crate::model::damping::DampingModel;
@@ -185,17 +185,6 @@ impl Parts {
         let positions: Vec<(usize, usize)> =
             self.dynamic(1.0, 0.0).iter().map(|e| (e.0, e.1)).collect();
         LuPattern::new(self.size, &positions)
-    }
-}
-
-/// `-1`, `0` or `1`.
-fn sign(v: f64) -> f64 {
-    if v > 0.0 {
-        1.0
-    } else if v < 0.0 {
-        -1.0
-    } else {
-        0.0
     }
 }
 

@@ -165,15 +165,7 @@ impl Steady {
                 Ok((0..big).map(|i| z[(big + i, 0)]).collect())
             }
             Parts::Hysteretic { r, sg, scr } => {
-                let sgn = |v: f64| {
-                    if v > 0.0 {
-                        1.0
-                    } else if v < 0.0 {
-                        -1.0
-                    } else {
-                        0.0
-                    }
-                };
+                let sgn = crate::damping::hysteretic::sign;
                 let s_n = sgn(lambda);
                 let lhs = CMat::from_fn(big, big, |a, b| {
                     let s_r = if r.spin[a] > 0.0 {

@@ -450,14 +450,7 @@ fn sparse_sweep_cost(
     limits: &Limits,
     values: u64,
 ) -> Cost {
-    let dofs = (sparse_states(limits) / 2).min(size.dofs);
-    let reduced = Size {
-        assembled: dofs,
-        dofs,
-        internal: 0,
-        ..size
-    };
-    let dense = sweep_cost(reduced, speeds, limits, true, values);
+    let dense = sweep_cost(reduced_size(size, limits), speeds, limits, true, values);
     let linear = size.dofs as u64 * sparse_bytes_per_coordinate(doubled);
     Cost {
         peak_bytes: dense.peak_bytes + linear,
@@ -490,13 +483,7 @@ const SPARSE_HARMONIC_WORK: f64 = 2e3;
 /// dense model of at most [`sparse_states`] states, with `extra` bytes besides (histories,
 /// outputs) and `values` answered.
 fn sparse_time_cost(size: Size, doubled: bool, limits: &Limits, extra: u64, values: u64) -> Cost {
-    let dofs = (sparse_states(limits) / 2).min(size.dofs);
-    let reduced = Size {
-        assembled: dofs,
-        dofs,
-        internal: 0,
-        ..size
-    };
+    let reduced = reduced_size(size, limits);
     let dense = Cost::new(reduced, 2, 0, extra, values);
     let linear = size.dofs as u64 * sparse_bytes_per_coordinate(doubled);
     Cost {
@@ -505,6 +492,17 @@ fn sparse_time_cost(size: Size, doubled: bool, limits: &Limits, extra: u64, valu
         ..dense
     }
     .with_work(reduced.eigen_work() + SPARSE_WORK * size.dofs as f64)
+}
+
+/// The largest reduced model of a rotor of `size` held sparse (at most [`sparse_states`]).
+fn reduced_size(size: Size, limits: &Limits) -> Size {
+    let dofs = (sparse_states(limits) / 2).min(size.dofs);
+    Size {
+        assembled: dofs,
+        dofs,
+        internal: 0,
+        ..size
+    }
 }
 
 /// Largest reduced model of a sparse sweep.
