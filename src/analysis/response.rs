@@ -23,7 +23,7 @@
 use super::AnalysisError;
 use super::audit::frequency::{self, Harmonic, Orbit, Steady};
 use super::reduction::with_supports;
-use crate::damping::{DampedModel, DampingError, large};
+use crate::damping::{DampedModel, large};
 use crate::fem::modal::ModalBasis;
 use crate::linalg::sparse::LuPattern;
 use crate::linalg::{RMat, c64};
@@ -77,9 +77,10 @@ pub enum Full<'a> {
     Sparse(&'a Held),
 }
 
-/// A large rotor's damping model and the pattern of its dynamic stiffness, analysed once.
+/// A large rotor's damping model (viscous, or hysteretic) and the pattern of its dynamic
+/// stiffness, analysed once.
 pub struct Held {
-    damping: DampingModel,
+    hysteretic: bool,
     pattern: LuPattern,
 }
 
@@ -89,12 +90,14 @@ impl Held {
         system: &RotorSystem,
         damping: &DampingModel,
     ) -> Result<Option<Self>, AnalysisError> {
-        let Some(parts) = large::parts(system, damping, 0.0) else {
-            return Ok(None);
+        let hysteretic = match damping {
+            DampingModel::Viscous => false,
+            DampingModel::Hysteretic => true,
+            _ => return Ok(None),
         };
         Ok(Some(Held {
-            damping: damping.clone(),
-            pattern: parts.pattern()?,
+            hysteretic,
+            pattern: large::parts_of(system, hysteretic, 0.0).pattern()?,
         }))
     }
 }
@@ -298,9 +301,9 @@ impl<'a> Responses<'a> {
     }
 
     /// The model's state at `speed`, shared by every frequency solved there.
-    pub fn at(&self, speed: f64) -> Result<At<'_>, AnalysisError> {
+    pub fn at(&self, speed: f64) -> At<'_> {
         let dense = |steady| Solver::Dense(Box::new(steady));
-        Ok(match (&self.reduced, self.full) {
+        match (&self.reduced, self.full) {
             (Some(r), _) => At {
                 solver: dense(Steady::at(&r.system, &r.model, speed)),
                 phi: Some(&r.phi),
@@ -312,15 +315,13 @@ impl<'a> Responses<'a> {
             (None, Full::Sparse(held)) => At {
                 solver: Solver::Sparse {
                     pattern: &held.pattern,
-                    parts: large::parts(self.system, &held.damping, speed).ok_or_else(|| {
-                        AnalysisError::Damping(DampingError::Unsolvable(SPARSE_MODELS.into()))
-                    })?,
+                    parts: large::parts_of(self.system, held.hysteretic, speed),
                     speed,
                     system: self.system,
                 },
                 phi: None,
             },
-        })
+        }
     }
 
     /// The steady orbit of every degree of freedom in `out` under `force` at `omega`, the
@@ -332,13 +333,9 @@ impl<'a> Responses<'a> {
         force: &Harmonic,
         out: &[usize],
     ) -> Result<Vec<Orbit>, AnalysisError> {
-        self.at(speed)?.orbits(omega, force, out)
+        self.at(speed).orbits(omega, force, out)
     }
 }
-
-/// What a large rotor's harmonic response is solved for.
-const SPARSE_MODELS: &str = "a rotor this large has harmonic responses of the viscous and \
-                             hysteretic models only";
 
 /// A model at one spin speed.
 pub struct At<'r> {

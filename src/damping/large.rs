@@ -54,11 +54,15 @@ pub struct Parts {
 /// The full model's matrices at `speed`, or `None` for the models built on a modal basis,
 /// which have no sparse form.
 pub fn parts(system: &RotorSystem, damping: &DampingModel, speed: f64) -> Option<Parts> {
-    let hysteretic = match damping {
-        DampingModel::Viscous => false,
-        DampingModel::Hysteretic => true,
-        _ => return None,
-    };
+    match damping {
+        DampingModel::Viscous => Some(parts_of(system, false, speed)),
+        DampingModel::Hysteretic => Some(parts_of(system, true, speed)),
+        _ => None,
+    }
+}
+
+/// The matrices at `speed` of the viscous model, or of the `hysteretic` one.
+pub fn parts_of(system: &RotorSystem, hysteretic: bool, speed: f64) -> Parts {
     let layout = system.layout();
     let n = system.n();
     let size = match layout {
@@ -119,7 +123,7 @@ pub fn parts(system: &RotorSystem, damping: &DampingModel, speed: f64) -> Option
             );
         }
     }
-    Some(Parts {
+    Parts {
         size,
         n,
         mass,
@@ -127,7 +131,7 @@ pub fn parts(system: &RotorSystem, damping: &DampingModel, speed: f64) -> Option
         stiffness: k,
         loss_n,
         loss_r,
-    })
+    }
 }
 
 impl Parts {
@@ -144,21 +148,23 @@ impl Parts {
         kk
     }
 
-    /// The entries of `Z(i lambda)` (mass, damping, stiffness in turn, repeated positions
-    /// apart): for the hysteretic model the loss at the signs of `lambda` (supports),
-    /// `lambda - Omega` (rotor rows) and `lambda + Omega` (conjugate rows), `sgn 0 = 0`. Every
-    /// speed and frequency gives entries at the same positions (zeros kept).
-    fn dynamic(&self, lambda: f64, speed: f64) -> Entries {
-        let signs = (sign(lambda), sign(lambda - speed), sign(lambda + speed));
+    /// The entries of `Z(i lambda)` (mass, damping, stiffness, loss in turn, repeated
+    /// positions apart), without a copy: for the hysteretic model the loss at the signs of
+    /// `lambda` (supports), `lambda - Omega` (rotor rows) and `lambda + Omega` (conjugate rows),
+    /// `sgn 0 = 0`. Every speed and frequency gives entries at the same positions (zeros kept).
+    fn dynamic(&self, lambda: f64, speed: f64) -> impl Iterator<Item = (usize, usize, c64)> + '_ {
+        let (a, b, c) = (sign(lambda), sign(lambda - speed), sign(lambda + speed));
         let s = c64::new(0.0, lambda);
-        let mut z: Entries = self
-            .mass
-            .iter()
-            .map(|&(i, j, v)| (i, j, s * s * v))
-            .collect();
-        z.extend(self.damping.iter().map(|&(i, j, v)| (i, j, s * v)));
-        z.extend(self.stiffness(signs));
-        z
+        let i1 = c64::new(0.0, 1.0);
+        let n = self.n;
+        scaled(&self.mass, s * s)
+            .chain(scaled(&self.damping, s))
+            .chain(self.stiffness.iter().copied())
+            .chain(scaled(&self.loss_n, i1 * a))
+            .chain(self.loss_r.iter().map(move |&(i, j, v)| {
+                let rot = if i < n { b } else { c };
+                (i, j, i1 * rot * v)
+            }))
     }
 
     /// `X` of `Z(i lambda) X = rhs`, the steady response at frequency `lambda` (rad/s, of
@@ -170,7 +176,7 @@ impl Parts {
         speed: f64,
         rhs: &[c64],
     ) -> Result<Vec<c64>, LinalgError> {
-        let values: Vec<c64> = self.dynamic(lambda, speed).iter().map(|e| e.2).collect();
+        let values: Vec<c64> = self.dynamic(lambda, speed).map(|e| e.2).collect();
         let lu = pattern.factor(&values)?;
         let mut x = rhs.to_vec();
         lu.solve_in_place(&mut x);
@@ -182,10 +188,14 @@ impl Parts {
 
     /// The positions of `Z`'s entries, analysed once for every speed and frequency.
     pub fn pattern(&self) -> Result<LuPattern, LinalgError> {
-        let positions: Vec<(usize, usize)> =
-            self.dynamic(1.0, 0.0).iter().map(|e| (e.0, e.1)).collect();
+        let positions: Vec<(usize, usize)> = self.dynamic(1.0, 0.0).map(|e| (e.0, e.1)).collect();
         LuPattern::new(self.size, &positions)
     }
+}
+
+/// `list` times `f`, entry by entry.
+fn scaled(list: &Entries, f: c64) -> impl Iterator<Item = (usize, usize, c64)> + '_ {
+    list.iter().map(move |&(i, j, v)| (i, j, f * v))
 }
 
 /// The full model's problems at `speed`: one (viscous), four (hysteretic, one per sign

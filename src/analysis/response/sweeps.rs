@@ -184,7 +184,7 @@ pub fn frequency_sweep<'a>(
     control.expect(frequencies.len() as u64);
     let probe_at = |points: Vec<f64>| {
         move |r: &Responses| -> Result<Vec<Orbit>, AnalysisError> {
-            let at = r.at(speed)?;
+            let at = r.at(speed);
             let per: Vec<Vec<Orbit>> = points
                 .par_iter()
                 .map(|&w| at.orbits(w, force, &[output]))
@@ -199,7 +199,7 @@ pub fn frequency_sweep<'a>(
     let bound = frequencies.iter().fold(0.0, |a: f64, b| a.max(b.abs()));
     let edges = edges(frequencies);
     let sweep = |model: &Responses| -> Result<Vec<Orbit>, AnalysisError> {
-        let at = model.at(speed)?;
+        let at = model.at(speed);
         frequencies
             .par_iter()
             .map(|&w| {

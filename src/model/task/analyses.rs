@@ -24,7 +24,12 @@ impl ModalRequest {
 }
 
 impl SweepRequest {
-    fn parse_sweep(&self, limits: &Limits) -> Result<(Model, SpeedGrid), Invalid> {
+    /// The model (held sparse where `hold` and it may be, [`Model::parse_held`]) and speeds.
+    fn parse_sweep(
+        &self,
+        limits: &Limits,
+        hold: bool,
+    ) -> Result<(Model, SpeedGrid, bool), Invalid> {
         let mut bad = Invalid::default();
         if let Some(f) = self.max_frequency {
             typed_speed(&mut bad, "max_frequency", f, positive);
@@ -35,38 +40,17 @@ impl SweepRequest {
             bad.push("modes", format!("must be an integer >= 1 (got {m})"));
         }
         let grid = speeds(&self.speeds, limits, &mut bad);
-        let model = Model::parse(&self.rotor, &self.damping, limits, bad)?;
-        Ok((model, grid.expect("validated")))
+        let (model, sparse) = Model::parse_held(hold, &self.rotor, &self.damping, limits, bad)?;
+        Ok((model, grid.expect("validated"), sparse))
     }
 
     /// `POST /v1/campbell`.
     pub fn parse_campbell(&self, limits: &Limits) -> Result<Task, Invalid> {
-        // A bounded sweep of the viscous or hysteretic model may hold a large rotor sparse: its
-        // size is then bounded by `max_sparse_dofs` and the memory estimate, not by the dense
-        // limits, which a rotor that turns out small or Guyan-reduced is parsed with again.
-        let eligible = self.max_frequency.is_some()
+        // A bounded sweep (of the viscous or hysteretic model) may hold a large rotor sparse.
+        let hold = self.max_frequency.is_some()
             && self.modes.is_none()
-            && self.modal_reduction.unwrap_or(true)
-            && matches!(
-                self.damping,
-                DampingInput::Viscous(_) | DampingInput::Hysteretic(_)
-            );
-        let relaxed = Limits {
-            max_states: usize::MAX,
-            ..limits.held_sparse()
-        };
-        let (model, speeds) = self.parse_sweep(if eligible { &relaxed } else { limits })?;
-        let size = model.size();
-        // Beam rotors only (a matrix rotor's matrices are dense), without Guyan reduction (whose
-        // matrices are too).
-        let sparse = eligible
-            && matches!(model.rotor, Rotor::Beam(_))
-            && size.dofs > SPARSE_FROM
-            && size.assembled == size.dofs;
-        let (model, speeds) = match eligible && !sparse {
-            true => self.parse_sweep(limits)?,
-            false => (model, speeds),
-        };
+            && self.modal_reduction.unwrap_or(true);
+        let (model, speeds, sparse) = self.parse_sweep(limits, hold)?;
         let size = model.size();
         let count = speeds.as_slice().len();
         let rotor_poles = 2 * size.dofs as u64;
@@ -112,7 +96,7 @@ impl SweepRequest {
 
     /// `POST /v1/stability`.
     pub fn parse_stability(&self, limits: &Limits) -> Result<Task, Invalid> {
-        let (model, speeds) = self.parse_sweep(limits)?;
+        let (model, speeds, _) = self.parse_sweep(limits, false)?;
         let size = model.size();
         let count = speeds.as_slice().len();
         let cost = sweep_cost(size, count, limits, false, 2 * count as u64 + 8);

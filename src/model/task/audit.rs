@@ -352,8 +352,7 @@ impl Level1Request {
         };
         // Held sparse, Level I runs on a checked reduction only.
         let reduce = self.modal_reduction.unwrap_or(true);
-        let (model, sparse) =
-            Model::parse_held_if(reduce, &self.rotor, &self.damping, limits, bad)?;
+        let (model, sparse) = Model::parse_held(reduce, &self.rotor, &self.damping, limits, bad)?;
         let mut bad = Invalid::default();
         let (at, qa) = placing(self, model.rotor.node_count(), speed, &mut bad);
         if sparse && qa.is_some() {
@@ -481,7 +480,7 @@ impl FrequencyResponseRequest {
                 "must be > 0 (the response to a static load is /v1/static)",
             );
         }
-        let (model, sparse) = Model::parse_held(&self.rotor, &self.damping, limits, bad)?;
+        let (model, sparse) = Model::parse_held(true, &self.rotor, &self.damping, limits, bad)?;
         let mut bad = Invalid::default();
         let nodes = model.rotor.node_count();
         let input = node_index(&mut bad, "input.node".into(), self.input.node, nodes);

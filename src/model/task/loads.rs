@@ -83,8 +83,7 @@ impl TimeResponseRequest {
         };
         // Held sparse, a rotor is integrated on a checked reduction only.
         let reduce = self.modal_reduction.unwrap_or(true);
-        let (model, sparse) =
-            Model::parse_held_if(reduce, &self.rotor, &self.damping, limits, bad)?;
+        let (model, sparse) = Model::parse_held(reduce, &self.rotor, &self.damping, limits, bad)?;
         let mut bad = Invalid::default();
         let nodes = model.rotor.node_count();
         let node = |bad: &mut Invalid, at: String, k: i64| node_index(bad, at, k, nodes);
@@ -227,7 +226,7 @@ impl UnbalanceResponseRequest {
         if self.unbalances.is_empty() {
             bad.push("unbalances", "needs at least one unbalance");
         }
-        let (model, sparse) = Model::parse_held(&self.rotor, &self.damping, limits, bad)?;
+        let (model, sparse) = Model::parse_held(true, &self.rotor, &self.damping, limits, bad)?;
         let mut bad = Invalid::default();
         let nodes = model.rotor.node_count();
         let mut unbalances = vec![];

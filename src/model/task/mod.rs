@@ -68,22 +68,12 @@ impl Model {
         bad.into_result(|| model)
     }
 
-    /// [`Model::parse`] of a forced response, the rotor held sparse where it may be: the
-    /// viscous and hysteretic models (the rotor's own second-order system) of a beam rotor
-    /// without Guyan reduction past [`SPARSE_FROM`] coordinates, whose size is then bounded by
+    /// [`Model::parse`], the rotor held sparse where `allow` and it may be: the viscous and
+    /// hysteretic models (the rotor's own second-order system) of a beam rotor without Guyan
+    /// reduction past [`SPARSE_FROM`] coordinates, whose size is then bounded by
     /// `max_sparse_dofs` and the memory estimate; any other is parsed against the dense limits.
     /// `(model, held sparse)`.
     pub fn parse_held(
-        rotor: &RotorInput,
-        damping: &DampingInput,
-        limits: &Limits,
-        bad: Invalid,
-    ) -> Result<(Self, bool), Invalid> {
-        Self::parse_held_if(true, rotor, damping, limits, bad)
-    }
-
-    /// [`Model::parse_held`] where `allow`, else [`Model::parse`].
-    pub fn parse_held_if(
         allow: bool,
         rotor: &RotorInput,
         damping: &DampingInput,
@@ -100,9 +90,10 @@ impl Model {
                 max_states: usize::MAX,
                 ..limits.held_sparse()
             };
-            if let Ok(model) = Model::parse(rotor, damping, &relaxed, bad.clone())
-                && model.held_sparse()
-            {
+            // Errors phrased against the sparse limits; a model that parses but cannot be held
+            // sparse (small, Guyan-reduced, a matrix rotor) is parsed again with the dense ones.
+            let model = Model::parse(rotor, damping, &relaxed, bad.clone())?;
+            if model.held_sparse() {
                 return Ok((model, true));
             }
         }
