@@ -398,6 +398,9 @@ fn shading_keeps_the_plain_plots() {
         range: [0.0, 375.0],
         speeds: speeds(),
         max_decay_rate: speeds().iter().map(|w| -2.0 + 0.004 * w).collect(),
+        max_frequency: None,
+        reduction: None,
+        threshold_closed: None,
         warnings: vec![],
     };
     assert_eq!(stability(&s).unwrap(), stability_with(&s, None).unwrap());

@@ -25,16 +25,6 @@ fn damping(v: Value, n: usize) -> DampingModel {
     DampingModel::parse(&d, Some(n)).unwrap()
 }
 
-/// The cross-coupled, anisotropic bearing tabulated over speed (`speed_dependent.json`).
-fn tabulated_bearing() -> Value {
-    let path = format!(
-        "{}/tests/data/ross/speed_dependent.json",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let v: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
-    v["rotor"]["supports"][0].clone()
-}
-
 /// Largest `|a - a'| + |b - b'|` over every orbit, relative to the largest `|a| + |b|`.
 fn worst(dense: &[Vec<Orbit>], sparse: &[Vec<Orbit>]) -> f64 {
     let (mut diff, mut top) = (0.0f64, 0.0f64);
@@ -47,15 +37,6 @@ fn worst(dense: &[Vec<Orbit>], sparse: &[Vec<Orbit>]) -> f64 {
     }
     assert!(top > 0.0);
     diff / top
-}
-
-/// The bearing's coefficients at `speed` as constants: its table read there.
-fn constant_at(system: &RotorSystem, speed: f64) -> Value {
-    let c = system.supports[0].support.at(speed);
-    json!({
-        "kxx": c.k.xx, "kxy": c.k.xy, "kyx": c.k.yx, "kyy": c.k.yy,
-        "cxx": c.c.xx, "cxy": c.c.xy, "cyx": c.c.yx, "cyy": c.c.yy,
-    })
 }
 
 /// The unbalance response over 0 to 1.3 times the third natural frequency at rest, sparse
@@ -120,15 +101,8 @@ fn case(system: &RotorSystem, reference: &RotorSystem, d: &Value, spin: f64) -> 
 /// the dense `Z X = F` of the bearings' tables read at that speed as constants.
 #[test]
 fn sparse_solve_is_the_dense_one() {
-    let isotropic = json!({"kxx": 2e7, "kyy": 2e7, "cxx": 3e3, "cyy": 3e3});
     let spin = 700.0;
-    let tabulated = assemble(common::stepped_rotor(150, tabulated_bearing(), 0.002));
-    let constant = assemble(common::stepped_rotor(
-        150,
-        constant_at(&tabulated, spin),
-        0.002,
-    ));
-    let iso = assemble(common::stepped_rotor(150, isotropic, 0.002));
+    let (iso, tabulated, constant) = common::stepped_three(150, spin);
     for d in [json!({"model": "viscous"}), json!({"model": "hysteretic"})] {
         let (u, f) = case(&iso, &iso, &d, spin);
         eprintln!("isotropic {d}: unbalance {u:.1e}, frequency response {f:.1e}");
@@ -149,7 +123,11 @@ fn sparse_solve_is_the_dense_one() {
 /// The modal models have no sparse form.
 #[test]
 fn modal_models_have_no_sparse_form() {
-    let system = assemble(common::stepped_rotor(30, tabulated_bearing(), 0.002));
+    let system = assemble(common::stepped_rotor(
+        30,
+        common::tabulated_bearing(),
+        0.002,
+    ));
     for d in [
         json!({"model": "equivalent"}),
         json!({"model": "nonviscous"}),
@@ -168,7 +146,7 @@ fn f(v: &Value) -> f64 {
 /// (`WHIRL_MAX_DOFS`) it answers where it was a 422, the modal models still refused there.
 #[tokio::test]
 async fn held_sparse_over_http() {
-    let rotor = common::stepped_rotor(150, tabulated_bearing(), 0.002);
+    let rotor = common::stepped_rotor(150, common::tabulated_bearing(), 0.002);
     let body = json!({
         "rotor": rotor,
         "damping": {"model": "hysteretic"},
@@ -214,7 +192,7 @@ async fn held_sparse_over_http() {
     assert!(diff <= 1e-10 * top, "{diff:e} of {top:e}");
 
     // The same shaft in 600 elements: 1202 complex coordinates, past WHIRL_MAX_DOFS (1000).
-    let big = common::stepped_rotor(600, tabulated_bearing(), 0.002);
+    let big = common::stepped_rotor(600, common::tabulated_bearing(), 0.002);
     let mut body = body;
     body["rotor"] = big;
     let (status, out) = post_json("/v1/unbalance-response", &body).await;

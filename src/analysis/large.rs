@@ -300,6 +300,20 @@ pub fn full_poles(
     speed: f64,
     radius: f64,
 ) -> Result<Vec<c64>, AnalysisError> {
+    Ok(full_modes(system, damping, speed, radius)?
+        .into_iter()
+        .map(|(s, _)| s)
+        .collect())
+}
+
+/// [`full_poles`] with each pole's shape on the coordinates (the displacement half of its
+/// first-order eigenvector, unscaled).
+pub fn full_modes(
+    system: &RotorSystem,
+    damping: &DampingModel,
+    speed: f64,
+    radius: f64,
+) -> Result<Vec<(c64, Vec<c64>)>, AnalysisError> {
     let problems = large::problems(system, damping, speed).ok_or_else(|| {
         AnalysisError::Damping(DampingError::Unsolvable(
             "the equivalent and nonviscous models of a large rotor have no sparse form".into(),
@@ -320,7 +334,15 @@ pub fn full_poles(
             (size / 2).min(SPARSE_ARNOLDI),
         )?
         .ok_or(AnalysisError::Linalg(LinalgError::NoConvergence))?;
-        out.extend(found.values.into_iter().filter(|&s| p.consistent(s, speed)));
+        let half = size / 2;
+        out.extend(
+            found
+                .values
+                .into_iter()
+                .zip(found.vectors)
+                .filter(|&(s, _)| p.consistent(s, speed))
+                .map(|(s, z)| (s, z[half..].to_vec())),
+        );
     }
     Ok(out)
 }

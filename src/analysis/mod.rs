@@ -15,6 +15,7 @@ pub mod response;
 pub mod roots;
 pub mod run;
 pub mod stability;
+pub mod stability_large;
 pub mod time;
 pub mod tracking;
 pub mod unbalance;

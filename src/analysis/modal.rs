@@ -1,9 +1,21 @@
 //! Poles at one spin speed, and the undamped nonrotating natural frequencies.
+//!
+//! Every pole of the model ([`modal`]), or those in the box `|Re s|, |Im s| <= bound`
+//! ([`modal_bounded`]; a rotor held sparse only so, [`modal_large`]: the box's poles of the
+//! full model by shift-invert Arnoldi through sparse factors of `Z(sigma)`, in a disc of radius
+//! `sqrt 2 bound` that holds the box, each closed by shift-invert at itself, and the natural
+//! frequencies below the bound by Lanczos on the sparse `(K, M)`; exact, with no dense matrix
+//! of the rotor's size and no reduction).
 
 use super::AnalysisError;
-use super::poles::{PoleSet, poles_at};
-use crate::damping::DampedModel;
-use crate::system::{Dof, RotorSystem};
+use super::large;
+use super::poles::{PoleSet, poles_at, rotor_set};
+use super::refine::{Full, nearest_pole};
+use crate::damping::{DampedModel, DampingError};
+use crate::linalg::{LinalgError, c64};
+use crate::model::damping::DampingModel;
+use crate::system::{Dof, Layout, RotorSystem};
+use rayon::prelude::*;
 
 /// Result of a modal analysis.
 #[derive(Debug, Clone)]
@@ -26,6 +38,67 @@ pub fn modal(
         poles: poles_at(model, speed)?,
         natural_frequencies: model.basis.omega.clone(),
         states: model.states(),
+        dofs: system.dofs.clone(),
+    })
+}
+
+/// Whether the pole `s` is in the box `|Re s|, |Im s| <= bound`.
+pub fn in_box(s: c64, bound: f64) -> bool {
+    s.re.abs() <= bound && s.im.abs() <= bound
+}
+
+/// [`modal`] keeping the poles in the box `|Re s|, |Im s| <= bound` and the natural
+/// frequencies up to `bound` (every one for an infinite bound). `missing_poles` still counts
+/// the whole model's.
+pub fn modal_bounded(
+    system: &RotorSystem,
+    model: &DampedModel,
+    speed: f64,
+    bound: f64,
+) -> Result<ModalResult, AnalysisError> {
+    let mut r = modal(system, model, speed)?;
+    r.poles.rotor.retain(|p| in_box(p.s, bound));
+    r.poles.internal.retain(|p| in_box(p.s, bound));
+    r.natural_frequencies.retain(|&w| w <= bound);
+    Ok(r)
+}
+
+/// The poles of a rotor held sparse in the box `|Re s|, |Im s| <= bound` at `speed`, and its
+/// natural frequencies up to `bound` (module docs). The viscous and hysteretic models only.
+pub fn modal_large(
+    system: &RotorSystem,
+    damping: &DampingModel,
+    speed: f64,
+    bound: f64,
+) -> Result<ModalResult, AnalysisError> {
+    let radius = std::f64::consts::SQRT_2 * bound;
+    let pairs = large::full_modes(system, damping, speed, radius).map_err(|e| match e {
+        AnalysisError::Linalg(LinalgError::NoConvergence) => {
+            AnalysisError::Damping(DampingError::Unsolvable(format!(
+                "the poles within {radius:.6e} rad/s of the origin did not converge in the \
+                 Arnoldi space a rotor held sparse is solved in (about 100 poles): lower \
+                 `max_frequency`"
+            )))
+        }
+        e => e,
+    })?;
+    // Each closed by shift-invert at itself: Arnoldi about one shift places a non-normal
+    // model's poles far from it to about 1e-8 only (the doubled model's on cross-coupled
+    // bearings, `tests/modal_large.rs`), a factor at the pole to round-off.
+    let full = Full::Sparse { system, damping };
+    let pairs: Vec<(c64, Vec<c64>)> = pairs
+        .into_par_iter()
+        .map(|(s, x)| Ok((nearest_pole(full, speed, s)?.unwrap_or(s), x)))
+        .collect::<Result<Vec<_>, AnalysisError>>()?
+        .into_iter()
+        .filter(|(s, _)| in_box(*s, bound))
+        .collect();
+    let doubled = system.layout() == Layout::Doubled;
+    let basis = large::lowest(system, 1, |_| bound)?;
+    Ok(ModalResult {
+        poles: rotor_set(speed, pairs, doubled),
+        natural_frequencies: basis.omega.into_iter().filter(|&w| w <= bound).collect(),
+        states: 2 * large::full_size(system),
         dofs: system.dofs.clone(),
     })
 }

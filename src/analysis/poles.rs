@@ -220,7 +220,7 @@ pub fn poles_at(model: &DampedModel, speed: f64) -> Result<PoleSet, LinalgError>
             }
         }
     }
-    let (mut rotor, mut internal): (Vec<Pole>, Vec<Pole>) = if doubled {
+    let (rotor, mut internal): (Vec<Pole>, Vec<Pole>) = if doubled {
         (once_each(rotor), once_each(internal))
     } else {
         (
@@ -228,20 +228,47 @@ pub fn poles_at(model: &DampedModel, speed: f64) -> Result<PoleSet, LinalgError>
             internal.into_iter().map(|p| p.0).collect(),
         )
     };
+    internal.sort_by(|a, b| a.s.re.total_cmp(&b.s.re));
+    Ok(PoleSet {
+        speed,
+        rotor: by_frequency(rotor),
+        internal,
+        expected_rotor: 2 * model.rotor_dofs(),
+        doubled,
+    })
+}
+
+/// Rotor poles by increasing |frequency|, backward first on ties (a pole set's order).
+fn by_frequency(mut rotor: Vec<Pole>) -> Vec<Pole> {
     rotor.sort_by(|a, b| {
         a.s.im
             .abs()
             .total_cmp(&b.s.im.abs())
             .then(a.s.im.total_cmp(&b.s.im))
     });
-    internal.sort_by(|a, b| a.s.re.total_cmp(&b.s.re));
-    Ok(PoleSet {
+    rotor
+}
+
+/// The rotor poles `s` with shapes `x` on the physical coordinates (no internal coordinates:
+/// the full model of a rotor held sparse) as a pole set at `speed` reports them: each mirror
+/// pair once in doubled coordinates, ordered by |frequency|. Its `expected_rotor` is the
+/// number reported (a bounded set, whose count is not known before the solve).
+pub fn rotor_set(speed: f64, pairs: Vec<(c64, Vec<c64>)>, doubled: bool) -> PoleSet {
+    let weighted: Vec<(Pole, f64)> = pairs
+        .into_iter()
+        .map(|(s, x)| (shaped(s, x, doubled), 0.0))
+        .collect();
+    let rotor = match doubled {
+        true => once_each(weighted),
+        false => weighted.into_iter().map(|p| p.0).collect(),
+    };
+    PoleSet {
         speed,
-        rotor,
-        internal,
-        expected_rotor: 2 * model.rotor_dofs(),
+        expected_rotor: rotor.len(),
+        rotor: by_frequency(rotor),
+        internal: vec![],
         doubled,
-    })
+    }
 }
 
 /// The pole `s` of the state model `m` with the state eigenvector `z = [v, x, y]`, as a pole
@@ -314,21 +341,7 @@ fn once_each(poles: Vec<(Pole, f64)>) -> Vec<Pole> {
 /// A pole with its shape `x` (and, for a doubled internal pole, the weight of its rotating
 /// branches on `r` against `conj r` in `.1`).
 fn pole(s: c64, x: Vec<c64>, y: Vec<c64>, m: &StateModel, doubled: bool) -> (Pole, f64) {
-    let whirl = if s.im >= 0.0 {
-        Whirl::Forward
-    } else {
-        Whirl::Backward
-    };
-    let (ratio, y_weight) = if doubled {
-        let h = x.len() / 2;
-        let a = x[..h].iter().map(|z| z.norm_sqr()).sum::<f64>().sqrt();
-        let b = x[h..].iter().map(|z| z.norm_sqr()).sum::<f64>().sqrt();
-        let (f, bw) = if s.im >= 0.0 { (a, b) } else { (b, a) };
-        let ratio = if f + b > 0.0 {
-            (f - bw) / (f + bw)
-        } else {
-            0.0
-        };
+    let y_weight = if doubled {
         let br = m.branches();
         let (mut yr, mut yc) = (0.0, 0.0);
         for (j, v) in y.iter().enumerate() {
@@ -338,26 +351,45 @@ fn pole(s: c64, x: Vec<c64>, y: Vec<c64>, m: &StateModel, doubled: bool) -> (Pol
                 yc += v.norm_sqr();
             }
         }
-        let w = if yr + yc > 0.0 {
+        if yr + yc > 0.0 {
             (yr - yc) / (yr + yc)
         } else {
             0.0
-        };
-        (ratio, w)
-    } else if s.im >= 0.0 {
-        (1.0, 0.0)
+        }
     } else {
-        (-1.0, 0.0)
+        0.0
     };
-    (
-        Pole {
-            s,
-            whirl,
-            shape: normalise(x),
-            whirl_ratio: ratio,
-        },
-        y_weight,
-    )
+    (shaped(s, x, doubled), y_weight)
+}
+
+/// The pole `s` with its shape `x` on the physical coordinates, its whirl and whirl ratio.
+fn shaped(s: c64, x: Vec<c64>, doubled: bool) -> Pole {
+    let whirl = if s.im >= 0.0 {
+        Whirl::Forward
+    } else {
+        Whirl::Backward
+    };
+    let ratio = if doubled {
+        let h = x.len() / 2;
+        let a = x[..h].iter().map(|z| z.norm_sqr()).sum::<f64>().sqrt();
+        let b = x[h..].iter().map(|z| z.norm_sqr()).sum::<f64>().sqrt();
+        let (f, bw) = if s.im >= 0.0 { (a, b) } else { (b, a) };
+        if f + b > 0.0 {
+            (f - bw) / (f + bw)
+        } else {
+            0.0
+        }
+    } else if s.im >= 0.0 {
+        1.0
+    } else {
+        -1.0
+    };
+    Pole {
+        s,
+        whirl,
+        shape: normalise(x),
+        whirl_ratio: ratio,
+    }
 }
 
 /// The displacement part `x` and internal part `y` of eigenvector `j` of a state `[v, x, y]`.

@@ -222,6 +222,15 @@ enum Found {
     Unsettled,
 }
 
+/// The full model's eigenvalue nearest `s` at spin speed `speed` (within 25 % of `|s|`), or
+/// `None` where it has none there or it does not settle.
+pub fn nearest_pole(full: Full, speed: f64, s: c64) -> Result<Option<c64>, AnalysisError> {
+    Ok(match refine_at(full, speed, &[s])?.pop() {
+        Some(Found::At(t)) => Some(t),
+        _ => None,
+    })
+}
+
 /// The full model's eigenvalue nearest each of `poles` at spin speed `speed`.
 fn refine_at(full: Full, speed: f64, poles: &[c64]) -> Result<Vec<Found>, AnalysisError> {
     match full {

@@ -21,6 +21,7 @@ use super::poles::Whirl;
 use super::refine;
 use super::response::{self, ResponseReduction};
 use super::stability::{self, Threshold};
+use super::stability_large;
 use super::time::{self, TimeError, TimeResult};
 use super::unbalance::{Orbit, SteadyUnbalance};
 use crate::damping::report::{self, ModelMatrices, ReportError};
@@ -39,6 +40,8 @@ pub enum Outcome {
         threshold: Option<Threshold>,
         speeds: Vec<f64>,
         max_decay_rate: Vec<f64>,
+        /// Held sparse: the bound of the poles considered and how the threshold was found.
+        held: Option<(f64, Box<stability_large::Bounded>)>,
     },
     Damping {
         matrices: Box<ModelMatrices>,
@@ -203,9 +206,24 @@ fn harmonic_model(
 /// Runs `task`, checking `control` for cancellation and counting progress there.
 pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
     match &task.kind {
-        TaskKind::Modal { model, speed } => {
+        TaskKind::Modal {
+            model,
+            speed,
+            max_frequency,
+            sparse,
+        } => {
+            if *sparse {
+                let system = assemble(model)?;
+                return modal::modal_large(&system, &model.damping, *speed, *max_frequency)
+                    .map(Outcome::Modal)
+                    .map_err(|e| match e {
+                        AnalysisError::Damping(e) => damping_error(e, &model.rotor),
+                        e => e.into(),
+                    });
+            }
             let (system, damped) = build(model)?;
-            Ok(Outcome::Modal(modal::modal(&system, &damped, *speed)?))
+            let r = modal::modal_bounded(&system, &damped, *speed, *max_frequency)?;
+            Ok(Outcome::Modal(r))
         }
         TaskKind::Campbell {
             model,
@@ -268,7 +286,32 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
             refine::outside_box(&mut r, full, bound)?;
             Ok(Outcome::Campbell(r))
         }
-        TaskKind::Stability { model, speeds } => {
+        TaskKind::Stability {
+            model,
+            speeds,
+            held,
+        } => {
+            if let Some((bound, max_states)) = *held {
+                let system = assemble(model)?;
+                let r = stability_large::stability_large(
+                    &system,
+                    &model.damping,
+                    speeds.as_slice(),
+                    bound,
+                    max_states,
+                    control,
+                )
+                .map_err(|e| match e {
+                    AnalysisError::Damping(e) => damping_error(e, &model.rotor),
+                    e => e.into(),
+                })?;
+                return Ok(Outcome::Stability {
+                    threshold: r.threshold.clone(),
+                    speeds: speeds.as_slice().to_vec(),
+                    max_decay_rate: r.max_decay_rate.clone(),
+                    held: Some((bound, Box::new(r))),
+                });
+            }
             let (_, damped) = build(model)?;
             let (threshold, max_decay_rate) =
                 stability::stability_curve(&damped, speeds.as_slice(), control)?;
@@ -276,6 +319,7 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                 threshold,
                 speeds: speeds.as_slice().to_vec(),
                 max_decay_rate,
+                held: None,
             })
         }
         TaskKind::Damping {

@@ -13,6 +13,7 @@ use super::AnalysisError;
 use super::control::Control;
 use super::poles::{Pole, PoleSet, poles_at};
 use crate::damping::DampedModel;
+use crate::linalg::LinalgError;
 use crate::model::limits::BATCH_PER_THREAD;
 use rayon::prelude::*;
 
@@ -55,6 +56,20 @@ pub fn sweep(
     model: &DampedModel,
     speeds: &[f64],
     control: &Control,
+    visit: impl FnMut(&PoleSet),
+) -> Result<Vec<Summary>, AnalysisError> {
+    sweep_of(&|w| poles_at(model, w), speeds, control, visit)
+}
+
+/// The poles a search reads at a speed: a model's every pole, or those of a bounded one.
+pub trait Poles: Fn(f64) -> Result<PoleSet, LinalgError> + Sync {}
+impl<F: Fn(f64) -> Result<PoleSet, LinalgError> + Sync> Poles for F {}
+
+/// [`sweep`] of the poles `at` gives.
+fn sweep_of(
+    at: &impl Poles,
+    speeds: &[f64],
+    control: &Control,
     mut visit: impl FnMut(&PoleSet),
 ) -> Result<Vec<Summary>, AnalysisError> {
     let batch = BATCH_PER_THREAD * rayon::current_num_threads().max(1);
@@ -64,7 +79,7 @@ pub fn sweep(
             .par_iter()
             .map(|&w| {
                 control.check()?;
-                let set = poles_at(model, w)?;
+                let set = at(w)?;
                 control.advance(1);
                 Ok(set)
             })
@@ -100,9 +115,18 @@ pub fn stability_curve(
     speeds: &[f64],
     control: &Control,
 ) -> Result<(Option<Threshold>, Vec<f64>), AnalysisError> {
+    curve_of(&|w| poles_at(model, w), speeds, control)
+}
+
+/// [`stability_curve`] of the poles `at` gives.
+pub fn curve_of(
+    at: &impl Poles,
+    speeds: &[f64],
+    control: &Control,
+) -> Result<(Option<Threshold>, Vec<f64>), AnalysisError> {
     control.expect(work(speeds.len()));
-    let summaries = sweep(model, speeds, control, |_| {})?;
-    let t = threshold(model, &summaries, control)?;
+    let summaries = sweep_of(at, speeds, control, |_| {})?;
+    let t = threshold_of(at, &summaries, control)?;
     control.advance(REFINEMENT_WORK);
     Ok((t, summaries.iter().map(|s| s.max_decay_rate).collect()))
 }
@@ -113,12 +137,21 @@ pub fn threshold(
     grid: &[Summary],
     control: &Control,
 ) -> Result<Option<Threshold>, AnalysisError> {
+    threshold_of(&|w| poles_at(model, w), grid, control)
+}
+
+/// [`threshold`] of the poles `at` gives.
+fn threshold_of(
+    poles_at: &impl Poles,
+    grid: &[Summary],
+    control: &Control,
+) -> Result<Option<Threshold>, AnalysisError> {
     let Some(first) = grid.iter().position(|s| s.growth > 0.0) else {
         return Ok(None);
     };
     let at = |w: f64| -> Result<Threshold, AnalysisError> {
         control.check()?;
-        Ok(describe(&poles_at(model, w)?))
+        Ok(describe(&poles_at(w)?))
     };
     if first == 0 {
         return at(grid[0].speed).map(Some);
@@ -150,7 +183,7 @@ pub fn threshold(
             x = 0.5 * (lo + hi);
         }
         control.check()?;
-        let set = poles_at(model, x)?;
+        let set = poles_at(x)?;
         let g = f(&Summary::of(&set));
         if g > 0.0 {
             hi = x;

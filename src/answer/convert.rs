@@ -124,6 +124,8 @@ pub fn modal(r: &ModalResult) -> api::ModalResponse {
         natural_frequencies: r.natural_frequencies.clone(),
         states: r.states,
         missing_poles: r.poles.missing(),
+        max_frequency: None,
+        full_model: api::Storage::Dense,
         shaft: None,
     }
 }
@@ -242,6 +244,9 @@ pub fn stability(
         whirl: t.map(|t| whirl(t.pole.whirl)),
         frequency: t.map(|t| t.pole.frequency()),
         range: [speeds[0], speeds[speeds.len() - 1]],
+        max_frequency: None,
+        reduction: None,
+        threshold_closed: None,
     }
 }
 

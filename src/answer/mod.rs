@@ -30,8 +30,18 @@ impl Output {
         Ok(match o {
             Outcome::Modal(r) => Output::Modal({
                 let mut m = convert::modal(&r);
-                if let TaskKind::Modal { model, .. } = &task.kind {
+                if let TaskKind::Modal {
+                    model,
+                    max_frequency,
+                    sparse,
+                    ..
+                } = &task.kind
+                {
                     m.shaft = convert::shaft_layout(&model.rotor);
+                    m.max_frequency = max_frequency.is_finite().then_some(*max_frequency);
+                    if *sparse {
+                        m.full_model = crate::model::api::Storage::Sparse;
+                    }
                 }
                 m
             }),
@@ -40,11 +50,16 @@ impl Output {
                 threshold,
                 speeds,
                 max_decay_rate,
-            } => Output::Stability(convert::stability(
-                threshold.as_ref(),
-                &speeds,
-                max_decay_rate,
-            )),
+                held,
+            } => Output::Stability({
+                let mut s = convert::stability(threshold.as_ref(), &speeds, max_decay_rate);
+                if let Some((bound, r)) = held {
+                    s.max_frequency = Some(bound);
+                    s.reduction = Some(convert::reduction(&r.reduction));
+                    s.threshold_closed = threshold.is_some().then_some(r.closed);
+                }
+                s
+            }),
             Outcome::Damping { matrices, model } => {
                 Output::Damping(Box::new(convert::damping_matrices(&matrices, model)))
             }

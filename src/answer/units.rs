@@ -102,6 +102,7 @@ fn modal(o: &mut ModalResponse, f: Scale, to: SpeedUnit) {
         .iter_mut()
         .for_each(|p| p.frequency = f(p.frequency));
     all(&mut o.natural_frequencies, f);
+    o.max_frequency = o.max_frequency.map(f);
     o.output_unit = to;
 }
 
@@ -126,6 +127,8 @@ fn stability(o: &mut StabilityResponse, f: Scale, to: SpeedUnit) {
     o.frequency = o.frequency.map(f);
     all(&mut o.range, f);
     all(&mut o.speeds, f);
+    o.max_frequency = o.max_frequency.map(f);
+    reduction(&mut o.reduction, f);
     o.output_unit = to;
 }
 

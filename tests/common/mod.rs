@@ -177,3 +177,48 @@ pub fn refined(rotor: &serde_json::Value, k: usize) -> (serde_json::Value, Vec<u
     }
     (fine, map)
 }
+
+/// The cross-coupled, anisotropic bearing tabulated over speed (`speed_dependent.json`).
+#[allow(dead_code)]
+pub fn tabulated_bearing() -> serde_json::Value {
+    let path = format!(
+        "{}/tests/data/ross/speed_dependent.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    v["rotor"]["supports"][0].clone()
+}
+
+/// The first bearing's coefficients at `speed` as constants: its table read there.
+#[allow(dead_code)]
+pub fn constant_at(system: &whirl::system::RotorSystem, speed: f64) -> serde_json::Value {
+    let c = system.supports[0].support.at(speed);
+    serde_json::json!({
+        "kxx": c.k.xx, "kxy": c.k.xy, "kyx": c.k.yx, "kyy": c.k.yy,
+        "cxx": c.c.xx, "cxy": c.c.xy, "cyx": c.c.yx, "cyy": c.c.yy,
+    })
+}
+
+/// The stepped rotor of `elements` elements (loss factor 0.002) on isotropic bearings, on the
+/// tabulated cross-coupled ones, and on those read at `speed` as constants (a dense model's
+/// `Z` as the sparse one forms it there).
+#[allow(dead_code)]
+pub fn stepped_three(
+    elements: usize,
+    speed: f64,
+) -> (
+    whirl::system::RotorSystem,
+    whirl::system::RotorSystem,
+    whirl::system::RotorSystem,
+) {
+    let isotropic = serde_json::json!({"kxx": 2e7, "kyy": 2e7, "cxx": 3e3, "cyy": 3e3});
+    let tabulated = assemble(stepped_rotor(elements, tabulated_bearing(), 0.002));
+    let constant = assemble(stepped_rotor(
+        elements,
+        constant_at(&tabulated, speed),
+        0.002,
+    ));
+    let iso = assemble(stepped_rotor(elements, isotropic, 0.002));
+    (iso, tabulated, constant)
+}

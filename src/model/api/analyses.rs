@@ -15,6 +15,14 @@ pub struct ModalRequest {
     /// Spin speed, rad/s or `{value, unit}` (default 0).
     #[serde(default)]
     pub speed: SpeedInput,
+    /// Report only the poles in the box `|decay_rate|, |frequency| <= max_frequency` and the
+    /// natural frequencies up to it, rad/s or `{value, unit}` (default: all). A rotor past 600
+    /// coordinates (a beam rotor without Guyan reduction, viscous or hysteretic model) is then
+    /// held sparse: the box's poles of its full model by shift-invert Arnoldi through sparse
+    /// factors, exact, its cost linear in the mesh (without it such a rotor is refused past
+    /// WHIRL_MAX_DOFS).
+    #[serde(default)]
+    pub max_frequency: Option<SpeedInput>,
     /// Unit of the speeds and frequencies of the answer: `rad/s` (the default), `rpm`, `Hz` or
     /// `cpm`; the answer's `output_unit` says which. Decay rates stay in 1/s.
     #[serde(default)]
@@ -28,9 +36,11 @@ pub struct SweepRequest {
     pub rotor: RotorInput,
     pub damping: DampingInput,
     pub speeds: SpeedsInput,
-    /// Campbell only: report the branches whose |frequency| is at most this at some speed of
-    /// the sweep, rad/s or `{value, unit}` (default: all). Stability always considers every
-    /// pole.
+    /// Campbell: report the branches whose |frequency| is at most this at some speed of the
+    /// sweep, rad/s or `{value, unit}` (default: all). Stability considers every pole of a
+    /// rotor solved dense; a rotor past 600 coordinates (viscous or hysteretic model, no Guyan
+    /// reduction) is held sparse with it, its poles in the box `|decay_rate|, |frequency| <=
+    /// max_frequency` considered (the answer's `max_frequency` says so).
     #[serde(default)]
     pub max_frequency: Option<SpeedInput>,
     /// Campbell only: report the `modes` branches of lowest |frequency| at the first speed,
@@ -133,8 +143,19 @@ pub struct ModalResponse {
     pub states: usize,
     /// Rotor poles the model does not define at this speed (hysteretic model near a critical
     /// speed: no sign-consistent root), counted against the number of rotor poles (2 per
-    /// complex degree of freedom).
+    /// complex degree of freedom). Held sparse, the poles are counted in the box only as found,
+    /// and this is 0.
     pub missing_poles: usize,
+    /// The request's `max_frequency` (in `output_unit`): the poles reported are those in the box
+    /// `|decay_rate|, |frequency| <= max_frequency`, the natural frequencies those up to it;
+    /// null when every pole is.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_frequency: Option<f64>,
+    /// How the full model was held: `dense`, or `sparse` (a rotor past 600 coordinates with
+    /// `max_frequency`: shift-invert Arnoldi through sparse factors and Lanczos, exact, no
+    /// dense matrix of the rotor's size).
+    #[serde(default)]
+    pub full_model: Storage,
     /// A beam rotor's nodes, supports and disks along the shaft.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub shaft: Option<ShaftLayout>,
@@ -341,8 +362,23 @@ pub struct StabilityResponse {
     pub range: [f64; 2],
     /// The grid searched, rad/s.
     pub speeds: Vec<f64>,
-    /// Largest decay rate of all poles at each grid speed, 1/s.
+    /// Largest decay rate of all poles at each grid speed, 1/s (held sparse, of those in the
+    /// box below `max_frequency`, on the reduction).
     pub max_decay_rate: Vec<f64>,
+    /// Held sparse (a rotor past 600 coordinates with `max_frequency`): the poles considered
+    /// are those in the box `|decay_rate|, |frequency| <= max_frequency` (in `output_unit`);
+    /// null when every pole is.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_frequency: Option<f64>,
+    /// Held sparse: the modal reduction the grid was searched on, checked against the full
+    /// model's poles in the box through sparse factors.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reduction: Option<ReductionInfo>,
+    /// Held sparse, with a threshold: true where it was closed on the full model (the secant
+    /// on the decay rate of the full model's pole, to 1e-10 relative), false where it is the
+    /// reduction's (a jump of the hysteretic model, or the range's start).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub threshold_closed: Option<bool>,
     /// How the model was read where it needed saying: supports held at the ends of their
     /// tables of coefficients outside them.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]

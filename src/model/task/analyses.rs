@@ -7,16 +7,45 @@ impl ModalRequest {
     pub fn parse(&self, limits: &Limits) -> Result<Task, Invalid> {
         let mut bad = Invalid::default();
         let speed = speed_at(&mut bad, "speed", self.speed);
-        let model = Model::parse(&self.rotor, &self.damping, limits, bad)?;
+        let bound = self
+            .max_frequency
+            .and_then(|f| typed_speed(&mut bad, "max_frequency", f, positive));
+        // Only a bounded modal analysis (of the viscous or hysteretic model) holds a large
+        // rotor sparse: every pole of it is not asked for.
+        let (model, sparse) =
+            Model::parse_held(bound.is_some(), &self.rotor, &self.damping, limits, bad)?;
         let size = model.size();
         let n = size.dofs as u64;
-        let values = size.states() as u64 * 5 + 2 * n * model.rotor.node_count() as u64 * 3 + n;
-        let cost = Cost::new(size, 1, 1, 0, values).with_work(size.eigen_work());
+        let cost = match sparse {
+            // At most one pole per two Arnoldi vectors, each with its shape on every node.
+            true => {
+                let poles = SPARSE_ARNOLDI as u64 / 2;
+                let values = poles * (5 + 3 * model.rotor.node_count() as u64) + n;
+                let linear = n * sparse_bytes_per_coordinate(model.rotor.doubled());
+                let response_bytes = values * BYTES_PER_VALUE;
+                Cost {
+                    size,
+                    peak_bytes: linear + values * 16 + response_bytes,
+                    response_bytes,
+                    work: SPARSE_WORK * n as f64,
+                }
+            }
+            false => {
+                let values =
+                    size.states() as u64 * 5 + 2 * n * model.rotor.node_count() as u64 * 3 + n;
+                Cost::new(size, 1, 1, 0, values).with_work(size.eigen_work())
+            }
+        };
         let speed = speed.expect("validated");
         Task {
             output_unit: self.output_unit.unwrap_or_default(),
             warnings: model.warnings(speed, speed),
-            kind: TaskKind::Modal { model, speed },
+            kind: TaskKind::Modal {
+                model,
+                speed,
+                max_frequency: bound.unwrap_or(f64::INFINITY),
+                sparse,
+            },
             cost,
         }
         .bounded(limits, "rotor")
@@ -96,15 +125,32 @@ impl SweepRequest {
 
     /// `POST /v1/stability`.
     pub fn parse_stability(&self, limits: &Limits) -> Result<Task, Invalid> {
-        let (model, speeds, _) = self.parse_sweep(limits, false)?;
+        // A large rotor is held sparse only for the poles below `max_frequency` (ignored on a
+        // rotor solved dense, whose every pole is considered).
+        let hold = self.max_frequency.is_some() && self.modal_reduction.unwrap_or(true);
+        let (model, speeds, sparse) = self.parse_sweep(limits, hold)?;
         let size = model.size();
         let count = speeds.as_slice().len();
-        let cost = sweep_cost(size, count, limits, false, 2 * count as u64 + 8);
+        let values = 2 * count as u64 + 8;
+        let (cost, held) = match sparse {
+            true => (
+                sparse_sweep_cost(size, model.rotor.doubled(), count, limits, values),
+                Some((
+                    self.max_frequency.map_or(f64::INFINITY, SpeedInput::rad_s),
+                    sparse_states(limits),
+                )),
+            ),
+            false => (sweep_cost(size, count, limits, false, values), None),
+        };
         let (lo, hi) = speeds.range();
         Ok(Task {
             output_unit: self.output_unit.unwrap_or_default(),
             warnings: model.warnings(lo, hi),
-            kind: TaskKind::Stability { model, speeds },
+            kind: TaskKind::Stability {
+                model,
+                speeds,
+                held,
+            },
             cost,
         })
     }

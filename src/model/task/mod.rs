@@ -12,8 +12,8 @@ use super::damping::BranchSet;
 use super::damping::DampingModel;
 use super::error::{Invalid, finite, non_negative, positive};
 use super::limits::{
-    BATCH_PER_THREAD, BYTES_PER_VALUE, Cost, Limits, SPARSE_FROM, SPARSE_HARMONIC_BYTES,
-    SPARSE_REDUCED_STATES, Size, sparse_bytes_per_coordinate,
+    BATCH_PER_THREAD, BYTES_PER_VALUE, Cost, Limits, SPARSE_ARNOLDI, SPARSE_FROM,
+    SPARSE_HARMONIC_BYTES, SPARSE_REDUCED_STATES, Size, sparse_bytes_per_coordinate,
 };
 use super::loads::{Excitation, Force, Pwl, SpeedLaw, TimeSpec, Unbalance, sample_count};
 use super::rotor::BeamRotor;
@@ -229,6 +229,10 @@ pub enum TaskKind {
     Modal {
         model: Model,
         speed: f64,
+        /// Poles in the box `|Re s|, |Im s| <=` this (infinite: all).
+        max_frequency: f64,
+        /// Held sparse (then bounded).
+        sparse: bool,
     },
     Campbell {
         model: Model,
@@ -248,6 +252,9 @@ pub enum TaskKind {
     Stability {
         model: Model,
         speeds: SpeedGrid,
+        /// Held sparse: the poles in the box `|Re s|, |Im s| <=` this are considered, on a
+        /// reduction of at most `max_states` states (`None`: every pole, dense).
+        held: Option<(f64, usize)>,
     },
     Damping {
         model: Model,
