@@ -143,8 +143,8 @@ fn mode_shapes_are_straight_across_couplings() {
     assert_eq!(shaft_layout(&rotor).unwrap().couplings, vec![6, 11]);
     let s = system(&d["rotor"]);
     let model = DampedModel::build(&s, &damping(json!({"model": "viscous"}), s.n())).unwrap();
-    let first = poles_at(&model, 0.0)
-        .unwrap()
+    let set = poles_at(&model, 0.0).unwrap();
+    let first = set
         .rotor
         .iter()
         .filter(|p| p.whirl == Whirl::Forward && p.s.im > 0.0)
@@ -152,7 +152,7 @@ fn mode_shapes_are_straight_across_couplings() {
         .unwrap()
         .s;
     let statics = static_deflection(b, 9.80665, Held::Elastic { speed: 0.0 }).unwrap();
-    let shape = profile(&s, &model, 0.0, first, &statics, &b.couplings()).unwrap();
+    let shape = profile(&s, &set, first, &statics, &b.couplings()).unwrap();
     let z = |n: usize| statics.nodes[n].position;
     let inside = |a: usize| -> Vec<(f64, f64)> {
         shape

@@ -29,8 +29,9 @@ fn body(rotor: &Value, node: usize) -> Value {
 /// The 1080-element mesh, held sparse, against the 180-element mesh (held sparse too) within
 /// 1e-6 (measured at most 1.7e-7) and the 18-element mesh's dense
 /// full model within 3e-5 (measured 2.1e-5 on the log decrement); the rigid-support critical
-/// speed too (by Lanczos at 1080 elements, 2166 coordinates). Level II (`machine`) and
-/// `modal_reduction: false` past the dense limits are 422s naming what to change.
+/// speed too (by Lanczos at 1080 elements, 2166 coordinates), and Level II (`machine`: a stage
+/// and a further cross-coupling) held sparse at 180 and 1080 elements. `modal_reduction:
+/// false` past the dense limits is a 422 naming what to change.
 #[tokio::test]
 async fn level1_of_a_train_held_sparse() {
     let (coarse, map) = train(1);
@@ -67,16 +68,98 @@ async fn level1_of_a_train_held_sparse() {
         assert!((a - b).abs() <= 1e-6 * b.abs(), "{key}: {a} against {b}");
         assert!((a - c).abs() <= 3e-5 * c.abs(), "{key}: {a} against {c}");
     }
-    let mut staged = body(&fine, map[3]);
-    staged.as_object_mut().unwrap().remove("node");
-    staged["machine"] =
-        json!({"stages": [{"node": map[3], "power": 1e5, "diameter": 0.3, "width": 0.02}]});
-    let (status, out) = post_json("/v1/level1", &staged).await;
-    assert_eq!(status, 422, "{out}");
-    assert_eq!(out["errors"][0]["path"], "machine", "{out}");
+    // Level II: the 1080- and 180-element meshes held sparse (each configuration's first
+    // forward mode from its full model's poles), the 18-element one dense.
+    let staged = |k: usize| {
+        let (rotor, map) = train(k);
+        let mut b = body(&rotor, map[3]);
+        b.as_object_mut().unwrap().remove("node");
+        b["machine"] = json!({"stages": [{"node": map[3], "power": 2e6, "diameter": 0.3,
+                                          "width": 0.02}],
+                              "additional_cross_coupling": [{"node": map[5], "q": 5e5}]});
+        b
+    };
+    let mut level2 = vec![];
+    for k in [1, 10, 60] {
+        let t = std::time::Instant::now();
+        let (status, out) = post_json("/v1/level1", &staged(k)).await;
+        assert_eq!(status, 200, "{out}");
+        let sources = out["level2"]["sources"].as_array().unwrap().clone();
+        println!(
+            "Level II x{k} ({:.2} s): {}",
+            t.elapsed().as_secs_f64(),
+            sources
+                .iter()
+                .map(|s| format!("{} {}", s["source"], s["log_decrement"]))
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+        level2.push(sources);
+    }
+    assert!(
+        level2[2].len() >= 3,
+        "bearings alone, stages, additional, all"
+    );
+    for (i, s) in level2[2].iter().enumerate() {
+        let (a, b, c) = (
+            f(&s["log_decrement"]),
+            f(&level2[1][i]["log_decrement"]),
+            f(&level2[0][i]["log_decrement"]),
+        );
+        assert_eq!(s["source"], level2[0][i]["source"]);
+        println!(
+            "{}: 1080 / 180 {:.1e}, / 18 {:.1e}",
+            s["source"],
+            (a - b).abs() / b.abs(),
+            (a - c).abs() / c.abs()
+        );
+        assert!(
+            (a - b).abs() <= 1e-6 * b.abs(),
+            "{}: {a} against {b}",
+            s["source"]
+        );
+        assert!(
+            (a - c).abs() <= 3e-5 * c.abs(),
+            "{}: {a} against {c}",
+            s["source"]
+        );
+    }
     let mut dense = body(&fine, map[3]);
     dense["modal_reduction"] = json!(false);
     let (status, out) = post_json("/v1/level1", &dense).await;
     assert_eq!(status, 422, "{out}");
     assert!(out.to_string().contains("WHIRL_MAX_DOFS"), "{out}");
+}
+
+/// Level II held sparse (each configuration's first forward mode among its full model's poles
+/// in a box, by sparse factors) against the dense full model's every pole, on one rotor: the
+/// 100-element stepped rotor on cross-coupled tabulated bearings (404 coordinates), viscous
+/// and hysteretic, a stage at the first disk and a further cross-coupling at the second.
+#[test]
+fn level2_held_sparse_is_the_dense_one() {
+    use whirl::analysis::audit::level2::level2;
+    use whirl::model::damping::DampingModel;
+    let system = common::assemble(common::stepped_rotor(
+        100,
+        common::tabulated_bearing(),
+        0.002,
+    ));
+    let tr = |node: usize| system.translation(node).unwrap();
+    let stages = [(tr(35), 1.0)];
+    let extra = [(tr(64), 3e5)];
+    for damping in [DampingModel::Viscous, DampingModel::Hysteretic] {
+        let dense = level2(&system, &damping, 800.0, &stages, 2e6, &extra, false).unwrap();
+        let held = level2(&system, &damping, 800.0, &stages, 2e6, &extra, true).unwrap();
+        assert_eq!(dense.len(), held.len());
+        for ((source, d), (_, h)) in dense.iter().zip(&held) {
+            let ((ds, dw), (hs, hw)) = (d.unwrap(), h.unwrap());
+            let rel = ((ds - hs).powi(2) + (dw - hw).powi(2)).sqrt() / (ds * ds + dw * dw).sqrt();
+            println!(
+                "{} {}: pole {ds} {dw} / {hs} {hw}: {rel:.1e}",
+                damping.name(),
+                source.name()
+            );
+            assert!(rel <= 1e-8, "{}: {rel:e}", source.name());
+        }
+    }
 }

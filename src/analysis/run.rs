@@ -521,6 +521,7 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                         &placing,
                         q,
                         &more,
+                        *sparse,
                     )?)
                 }
                 None => None,

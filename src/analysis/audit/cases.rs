@@ -7,11 +7,10 @@ use super::placement::{self, CLEARANCE_FRACTION, Journal, Placed, Profile};
 use super::statics::StaticResult;
 use crate::analysis::AnalysisError;
 use crate::analysis::criticals::Critical;
-use crate::analysis::poles::{Whirl, poles_at};
-use crate::damping::DampedModel;
+use crate::analysis::poles::{PoleSet, Whirl};
 use crate::linalg::c64;
 use crate::model::rotor::BeamRotor;
-use crate::system::{DofKind, Layout, RotorSystem};
+use crate::system::{DofKind, RotorSystem};
 
 /// One case: the mode it excites and its unbalances.
 #[derive(Debug, Clone, PartialEq)]
@@ -80,7 +79,8 @@ pub struct Shape {
 /// Points per element of [`Shape::curve`], ends included.
 pub const CURVE_POINTS: usize = 9;
 
-/// The shape of the forward pole of `damped` at `speed` nearest `pole`: at each node `|a| +
+/// The shape of the forward pole of `set` (the poles at the critical speed, dense or held
+/// sparse) nearest `pole`: at each node `|a| +
 /// |b|` of the forward and backward circular parts, signed by the real part of its inner
 /// product with the node that moves most (in phase or in opposition). Between two nodes that
 /// keep their rotations the translations are the element's cubic Hermite interpolation of
@@ -89,13 +89,11 @@ pub const CURVE_POINTS: usize = 9;
 /// nodes), a spring and no beam, the nodes are joined straight.
 pub fn profile(
     system: &RotorSystem,
-    damped: &DampedModel,
-    speed: f64,
+    set: &PoleSet,
     pole: c64,
     statics: &StaticResult,
     couplings: &[usize],
 ) -> Result<Shape, AnalysisError> {
-    let set = poles_at(damped, speed)?;
     let Some(p) = set
         .rotor
         .iter()
@@ -105,7 +103,7 @@ pub fn profile(
         return Ok(Shape::default());
     };
     let n = system.dofs.len();
-    let doubled = damped.layout == Layout::Doubled;
+    let doubled = set.doubled;
     let part = |j: usize| {
         let a = p.shape.get(j).copied().unwrap_or_default();
         let b = if doubled {

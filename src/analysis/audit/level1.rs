@@ -15,6 +15,7 @@
 
 use crate::analysis::AnalysisError;
 use crate::analysis::control::Control;
+use crate::analysis::modal::modal_large;
 use crate::analysis::poles::{Pole, Whirl, overdamped, poles_at};
 use crate::damping::DampedModel;
 use crate::linalg::{self, c64};
@@ -136,6 +137,9 @@ pub struct FirstForward<'a> {
     /// Where each share acts in the system's coordinates, its node, the share.
     at: Vec<(Placement, usize, f64)>,
     reference: Option<Pole>,
+    /// Held sparse: the candidates are the full model's poles in the box `|Re s|, |Im s| <=`
+    /// this ([`modal_large`]); `None`: every pole of the dense model.
+    bound: Option<f64>,
 }
 
 impl<'a> FirstForward<'a> {
@@ -160,12 +164,39 @@ impl<'a> FirstForward<'a> {
         speed: f64,
         at: Vec<(Placement, usize, f64)>,
     ) -> Result<Self, AnalysisError> {
+        Self::bounded(system, damping, speed, at, None)
+    }
+
+    /// [`FirstForward::new`] of a rotor held sparse: its candidates the full model's poles in
+    /// the box `|Re s|, |Im s| <= bound`, by sparse factors.
+    pub fn held(
+        system: &'a RotorSystem,
+        damping: &'a DampingModel,
+        speed: f64,
+        at: &Placing,
+        bound: f64,
+    ) -> Result<Self, AnalysisError> {
+        let at = at
+            .iter()
+            .map(|&(dof, w)| (Placement::Dof(dof), system.dofs[dof].node, w))
+            .collect();
+        Self::bounded(system, damping, speed, at, Some(bound))
+    }
+
+    fn bounded(
+        system: &'a RotorSystem,
+        damping: &'a DampingModel,
+        speed: f64,
+        at: Vec<(Placement, usize, f64)>,
+        bound: Option<f64>,
+    ) -> Result<Self, AnalysisError> {
         let mut first = Self {
             system,
             damping,
             speed,
             at,
             reference: None,
+            bound,
         };
         first.reference = first
             .candidates(0.0)?
@@ -210,8 +241,10 @@ impl<'a> FirstForward<'a> {
     /// The forward rotor poles that oscillate and are not overdamped, at `q`.
     fn candidates(&self, q: f64) -> Result<Vec<Pole>, AnalysisError> {
         let s = coupled(self.system, &self.at, q);
-        let model = DampedModel::build(&s, self.damping)?;
-        let set = poles_at(&model, self.speed)?;
+        let set = match self.bound {
+            Some(bound) => modal_large(&s, self.damping, self.speed, bound)?.poles,
+            None => poles_at(&DampedModel::build(&s, self.damping)?, self.speed)?,
+        };
         Ok(set
             .rotor
             .into_iter()

@@ -13,6 +13,11 @@ use crate::analysis::AnalysisError;
 use crate::model::damping::DampingModel;
 use crate::system::RotorSystem;
 
+/// The box a rotor held sparse is solved in, times its lowest undamped natural frequency at
+/// rest: the first forward mode at speed, gyroscopically stiffened and moved by the
+/// cross-coupling, stays well inside it, and the box holds few poles (each found exactly).
+pub const HELD_BOX: f64 = 3.0;
+
 /// A destabilising source of Level II, or their absence, or all of them.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Source {
@@ -42,7 +47,9 @@ impl Source {
 
 /// Level II at `speed`: the first forward mode under each configuration that applies. `stages`
 /// holds each stage's translation and share of `qa`; `extra` each further cross-coupling's
-/// translation and q, N/m.
+/// translation and q, N/m. A rotor `held` sparse (the viscous and hysteretic models past 600
+/// coordinates) is solved through sparse factors, each configuration's candidates its full
+/// model's poles in a box of [`HELD_BOX`] times its lowest undamped natural frequency.
 pub fn level2(
     system: &RotorSystem,
     damping: &DampingModel,
@@ -50,39 +57,48 @@ pub fn level2(
     stages: &Placing,
     qa: f64,
     extra: &Placing,
+    held: bool,
 ) -> Result<Vec<(Source, ForwardPole)>, AnalysisError> {
+    let bound = match held {
+        true => {
+            let basis = crate::analysis::large::lowest(system, 1, |_| 0.0)?;
+            Some(HELD_BOX * basis.omega[0])
+        }
+        false => None,
+    };
+    fn follow<'a>(
+        s: &'a RotorSystem,
+        damping: &'a DampingModel,
+        speed: f64,
+        at: &Placing,
+        bound: Option<f64>,
+    ) -> Result<FirstForward<'a>, AnalysisError> {
+        match bound {
+            Some(b) => FirstForward::held(s, damping, speed, at, b),
+            None => FirstForward::new(s, damping, speed, at),
+        }
+    }
+    let first = |s, at| follow(s, damping, speed, at, bound);
     let mut bare = system.clone();
     bare.supports.retain(|p| !p.support.seal);
     let seals = bare.supports.len() < system.supports.len();
     // Shares times q_A: the absolute cross-coupling of each stage, applied with q = 1.
     let stage_q: Vec<(usize, f64)> = stages.iter().map(|&(d, w)| (d, w * qa)).collect();
-    let mut out = vec![(
-        Source::Base,
-        FirstForward::new(&bare, damping, speed, &[])?.base(),
-    )];
+    let mut out = vec![(Source::Base, first(&bare, &[])?.base())];
     if seals {
-        out.push((
-            Source::Seals,
-            FirstForward::new(system, damping, speed, &[])?.base(),
-        ));
+        out.push((Source::Seals, first(system, &[])?.base()));
     }
     if qa > 0.0 && !stage_q.is_empty() {
-        out.push((
-            Source::Stages,
-            FirstForward::new(&bare, damping, speed, &stage_q)?.at(1.0)?,
-        ));
+        out.push((Source::Stages, first(&bare, &stage_q)?.at(1.0)?));
     }
     if !extra.is_empty() {
-        out.push((
-            Source::Additional,
-            FirstForward::new(&bare, damping, speed, extra)?.at(1.0)?,
-        ));
+        out.push((Source::Additional, first(&bare, extra)?.at(1.0)?));
     }
     let all: Vec<(usize, f64)> = stage_q.iter().chain(extra).copied().collect();
     let together = if all.is_empty() {
-        FirstForward::new(system, damping, speed, &[])?.base()
+        first(system, &[])?.base()
     } else {
-        FirstForward::new(system, damping, speed, &all)?.at(1.0)?
+        first(system, &all)?.at(1.0)?
     };
     out.push((Source::All, together));
     Ok(out)

@@ -1,6 +1,8 @@
 //! The report: its analyses two at a time, its unbalance cases, and its bearing sets.
 
 use super::*;
+use crate::analysis::poles::{PoleSet, poles_at};
+use crate::linalg::c64;
 
 /// A report's parts, its unbalance cases and, for each bearing set, the same.
 ///
@@ -134,7 +136,25 @@ fn report_cases(
     let Rotor::Beam(rotor) = &model.rotor else {
         return Ok(vec![]);
     };
-    let (system, damped) = build(model)?;
+    // The mode shapes at the critical speeds: every pole of the dense model, or those of a
+    // rotor held sparse in a box just holding the critical's pole.
+    let sparse = matches!(
+        plan.unbalance.kind,
+        TaskKind::Unbalance { sparse: true, .. }
+    );
+    let (system, damped) = match sparse {
+        true => (assemble(model)?, None),
+        false => build(model).map(|(s, d)| (s, Some(d)))?,
+    };
+    let poles = |speed: f64, pole: c64| -> Result<PoleSet, RunError> {
+        Ok(match &damped {
+            Some(d) => poles_at(d, speed).map_err(AnalysisError::from)?,
+            None => {
+                let bound = 1.01 * pole.re.abs().max(pole.im.abs());
+                modal::modal_large(&system, &model.damping, speed, bound)?.poles
+            }
+        })
+    };
     let rpm = plan.range.1 * 30.0 / std::f64::consts::PI;
     let journals = cases::journals(result);
     let bearings: Vec<usize> = journals.iter().map(|j| j.node).collect();
@@ -148,14 +168,8 @@ fn report_cases(
     let mut out = vec![];
     for (i, critical) in forward.into_iter().take(MAX_CASES).enumerate() {
         control.check().map_err(|_| RunError::Cancelled)?;
-        let shape = cases::profile(
-            &system,
-            &damped,
-            critical.speed,
-            critical.pole,
-            result,
-            &couplings,
-        )?;
+        let set = poles(critical.speed, critical.pole)?;
+        let shape = cases::profile(&system, &set, critical.pole, result, &couplings)?;
         let overhung = |left: bool| cases::overhung_mass(rotor, result, left);
         let placed = placement::place(&shape.nodes, &journals, &overhung, rpm, *gravity);
         if placed.is_empty() {
@@ -176,7 +190,7 @@ fn report_cases(
                 nodes: nodes.clone(),
                 range: *range,
                 reduce: true,
-                sparse: false,
+                sparse,
             },
             cost: plan.unbalance.cost,
             warnings: vec![],

@@ -355,18 +355,6 @@ impl Level1Request {
         let (model, sparse) = Model::parse_held(reduce, &self.rotor, &self.damping, limits, bad)?;
         let mut bad = Invalid::default();
         let (at, qa) = placing(self, model.rotor.node_count(), speed, &mut bad);
-        if sparse && qa.is_some() {
-            bad.push(
-                "machine",
-                format!(
-                    "Level II (which runs with the machine's stages) holds the rotor dense, and \
-                     this one has {} complex degrees of freedom, more than the limit of {} \
-                     (WHIRL_MAX_DOFS): give `node` or `nodes` for Level I alone",
-                    model.rotor.dof_count(),
-                    limits.max_dofs
-                ),
-            );
-        }
         let density = match self.machine.as_ref().and_then(|m| m.mean_gas_density) {
             Some(rho) => bad.check("machine.mean_gas_density", positive(rho)),
             None => None,
