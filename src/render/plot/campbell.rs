@@ -546,7 +546,14 @@ pub fn stability_with(s: &StabilityResponse, shade: Option<[f64; 2]>) -> Result<
     let (x0, x1) = extent(s.speeds.iter().copied()).unwrap_or((0.0, 1.0));
     let x = Axis::lin(x0, x1);
     let (y0, y1, clipped) = decay_range(s.max_decay_rate.iter().copied());
-    svg.caption((W / 2.0, 24.0), "Stability: largest decay rate");
+    // A rotor held sparse considers the poles in a box only: the caption says which.
+    let caption = match s.max_frequency {
+        Some(b) => {
+            format!("Stability: largest decay rate of the poles with |σ|, |ω| ≤ {b:.0} rad/s")
+        }
+        None => "Stability: largest decay rate".to_string(),
+    };
+    svg.caption((W / 2.0, 24.0), &caption);
     let p = svg.panel([LEFT, 84.0, RIGHT, 476.0], x, Axis::lin(y0, y1));
     let shade = clip(shade, x.lo, x.hi);
     if let Some(b) = shade {
