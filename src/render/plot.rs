@@ -10,12 +10,14 @@ pub mod axis;
 mod campbell;
 mod modes;
 mod response;
+mod stability;
 mod study;
 pub mod svg;
 
-pub use campbell::{campbell, campbell_with, decay_range, stability, stability_with};
+pub use campbell::{campbell, campbell_with, decay_range};
 pub use modes::{modal, modal_plotted};
 pub use response::{time, unbalance};
+pub use stability::{stability, stability_with};
 pub use study::study;
 
 pub use crate::model::speeds::RPM;

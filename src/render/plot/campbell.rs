@@ -1,15 +1,16 @@
 //! The Campbell diagram (|frequency| against speed, the 1x and 2x lines, critical speeds)
-//! over its decay-rate panel, and the stability plot (largest decay rate against speed).
+//! over its decay-rate panel (the stability plot, largest decay rate against speed, in
+//! `stability.rs`).
 
 use super::svg::{Anchor, Axis, INK, Panel, Stroke, Svg, extent, sig, spread, text_width};
 use super::{COLOURS, Err, RPM, SHADE_HEX, clip, runs};
 use crate::model::api::Whirl as ApiWhirl;
-use crate::model::api::{Branch, CampbellResponse, CriticalSpeed, StabilityResponse, Whirl};
+use crate::model::api::{Branch, CampbellResponse, CriticalSpeed, Whirl};
 
-const W: f64 = 960.0;
-const LEFT: f64 = 84.0;
-const RIGHT: f64 = W - 64.0;
-const RED: &str = "#C81414";
+pub(super) const W: f64 = 960.0;
+pub(super) const LEFT: f64 = 84.0;
+pub(super) const RIGHT: f64 = W - 64.0;
+pub(super) const RED: &str = "#C81414";
 const SYNC: &str = "#555555";
 
 /// Colour of mode `mode` (1-based).
@@ -418,7 +419,7 @@ pub fn campbell_with(c: &CampbellResponse, shade: Option<[f64; 2]>) -> Result<St
 }
 
 /// The operating range shaded over the whole height of `p`.
-fn band(svg: &mut Svg, p: &Panel, (lo, hi): (f64, f64)) {
+pub(super) fn band(svg: &mut Svg, p: &Panel, (lo, hi): (f64, f64)) {
     let (a, _) = p.px((lo, p.y.lo));
     let (b, _) = p.px((hi, p.y.lo));
     svg.rect_px([a, p.rect[1], b, p.rect[3]], SHADE_HEX, 0.22, None);
@@ -432,7 +433,7 @@ fn band(svg: &mut Svg, p: &Panel, (lo, hi): (f64, f64)) {
 }
 
 /// Note of a clipped decay-rate axis, `above` pixels over `p`, right-aligned.
-fn clipped_note(svg: &mut Svg, p: &Panel, max: f64, above: f64) {
+pub(super) fn clipped_note(svg: &mut Svg, p: &Panel, max: f64, above: f64) {
     let s = format!(
         "axis clipped at σ = {} 1/s (largest σ: {} 1/s)",
         sig(p.y.hi, 2),
@@ -533,75 +534,4 @@ fn criticals(svg: &mut Svg, p: &Panel, c: &CampbellResponse) {
         };
         svg.text((x, y), &s, 12.0, anchor, INK);
     }
-}
-
-/// Largest decay rate against speed, the threshold marked.
-pub fn stability(s: &StabilityResponse) -> Result<String, Err> {
-    stability_with(s, None)
-}
-
-/// [`stability`] with the operating speeds `shade = [min, max]` (rad/s) shaded.
-pub fn stability_with(s: &StabilityResponse, shade: Option<[f64; 2]>) -> Result<String, Err> {
-    let mut svg = Svg::new(W as u32, 540).nondimensional(s.nondimensional);
-    let (x0, x1) = extent(s.speeds.iter().copied()).unwrap_or((0.0, 1.0));
-    let x = Axis::lin(x0, x1);
-    let (y0, y1, clipped) = decay_range(s.max_decay_rate.iter().copied());
-    // A rotor held sparse considers the poles in a box only: the caption says which.
-    let caption = match s.max_frequency {
-        Some(b) => {
-            format!("Stability: largest decay rate of the poles with |σ|, |ω| ≤ {b:.0} rad/s")
-        }
-        None => "Stability: largest decay rate".to_string(),
-    };
-    svg.caption((W / 2.0, 24.0), &caption);
-    let p = svg.panel([LEFT, 84.0, RIGHT, 476.0], x, Axis::lin(y0, y1));
-    let shade = clip(shade, x.lo, x.hi);
-    if let Some(b) = shade {
-        band(&mut svg, &p, b);
-    }
-    svg.axes(
-        &p,
-        "spin speed [rad/s]",
-        "largest decay rate σ [1/s]  (> 0 unstable)",
-    );
-    svg.top_axis(&p, RPM, "spin speed [rpm]");
-    svg.path(
-        &p,
-        &[(x.lo, 0.0), (x.hi, 0.0)],
-        Stroke::solid(INK, 1.0),
-        "zero",
-    );
-    let pts: Vec<(f64, f64)> = s
-        .speeds
-        .iter()
-        .copied()
-        .zip(s.max_decay_rate.iter().copied())
-        .collect();
-    svg.path(&p, &pts, Stroke::solid(COLOURS[0], 2.0), "decay");
-    let mut key: Vec<(String, &str, Option<&str>)> = vec![];
-    if let Some(t) = s.threshold {
-        svg.path(
-            &p,
-            &[(t, y0), (t, y1)],
-            Stroke::solid(RED, 2.0),
-            "threshold",
-        );
-        let mut name = format!("threshold {}", svg.speed_label(t));
-        if let (Some(m), Some(w)) = (s.mode, s.whirl) {
-            let w = if w == Whirl::Backward { "B" } else { "F" };
-            name += &format!(": mode {m}{w}");
-            if let Some(f) = s.frequency {
-                name += &format!(" at {}", svg.frequency_label(f));
-            }
-        }
-        key.push((name, RED, None));
-    }
-    if shade.is_some() {
-        key.push(("operating range".into(), SHADE_HEX, Some("shade")));
-    }
-    svg.key_in(&p, &key);
-    if let Some(m) = clipped {
-        clipped_note(&mut svg, &p, m, 44.0);
-    }
-    Ok(svg.finish())
 }
