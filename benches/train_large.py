@@ -41,6 +41,10 @@ number to follow with the mesh (in the table's `value` column):
   models (the equivalent and nonviscous ones hold the rotor dense); the first forward critical
   speed of its Campbell diagram.
 - damping (nonviscous): past the dense limits it still holds the rotor dense (refused).
+- campbell-equ, campbell-non: the Campbell diagram above of the equivalent and nonviscous
+  models (held sparse with their dampers on the modes up to 16 times the bound).
+- stability-equ, stability-non: the threshold above of those models.
+- modal-non: the modal analysis above of the nonviscous model.
 """
 
 import argparse
@@ -124,6 +128,22 @@ def requests(rotor, n):
           "models": [h, v]},
          lambda o: o["campbell"]["critical_speeds"][0]),
         ("damping", "/v1/damping", {"rotor": rotor, "damping": {"model": "nonviscous"}}, lambda o: None),
+    ] + [
+        (f"campbell-{m[:3]}", "/v1/campbell",
+         {"rotor": rotor, "damping": {"model": m}, "speeds": {"start": 0, "stop": 1500, "count": 31},
+          "max_frequency": 1500},
+         lambda o: min(abs(b["frequency"][0]) for b in o["branches"] if b["frequency"][0] is not None))
+        for m in ("equivalent", "nonviscous")
+    ] + [
+        (f"stability-{m[:3]}", "/v1/stability",
+         {"rotor": rotor, "damping": {"model": m}, "speeds": {"start": 0, "stop": 3000, "count": 31},
+          "max_frequency": 3000},
+         lambda o: o["threshold"] or "stable")
+        for m in ("equivalent", "nonviscous")
+    ] + [
+        ("modal-non", "/v1/modal",
+         {"rotor": rotor, "damping": {"model": "nonviscous"}, "speed": 500, "max_frequency": 1500},
+         lambda o: o["natural_frequencies"][0]),
     ]
 
 
@@ -140,7 +160,9 @@ def held(out):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--refine", default="1,10,60", help="refinements, comma-separated")
+    ap.add_argument("--only", default="", help="analyses to run (names as printed), comma-separated")
     args = ap.parse_args()
+    only = {a for a in args.only.split(",") if a}
     ks = [int(k) for k in args.refine.split(",") if k.strip()]
     binary = ROOT / "target" / "release" / "whirl"
     if not binary.exists():
@@ -155,6 +177,8 @@ def main():
             rotor, n = refined(coarse, k)
             elements = sum(s.get("elements", 1) for s in rotor["shaft"] if "coupling" not in s)
             for name, path, body, headline in requests(rotor, n):
+                if only and name not in only:
+                    continue
                 try:
                     t = time.perf_counter()
                     out = whirl.post(path, body)

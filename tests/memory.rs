@@ -235,6 +235,21 @@ fn every_estimate_bounds_the_measured_peak_heap() {
                "damping": {"model": "viscous"}, "max_frequency": 6000.0,
                "speeds": {"start": 0, "stop": 2000, "count": 20}}),
     ));
+    // The nonviscous model of that rotor (lossy steel) held sparse: its dampers on the modes
+    // up to 16 times the bound, a column of the rotor's size each and a solve per damper in
+    // each factor.
+    let steel_lossy = json!({"steel": {"young_modulus": 2.11e11, "density": 7810.0,
+                                       "poisson_ratio": 0.3, "loss_factor": 0.002}});
+    cases.push((
+        "campbell, 800 elements held sparse, nonviscous",
+        "campbell",
+        json!({"rotor": {"type": "beam", "materials": steel_lossy,
+                 "shaft": [{"length": 1.2, "outer_diameter": 0.08, "material": "steel", "elements": 800}],
+                 "disks": [{"node": 400, "mass": 20.0, "polar_inertia": 0.3, "transverse_inertia": 0.16}],
+                 "supports": [bearing(0), bearing(800)]},
+               "damping": {"model": "nonviscous"}, "max_frequency": 6000.0,
+               "speeds": {"start": 0, "stop": 2000, "count": 20}}),
+    ));
     // Harmonic responses of a large rotor held sparse: one sparse factor per frequency.
     let shaft = |elements: usize| {
         json!({"type": "beam", "materials": steel_plain,

@@ -47,8 +47,8 @@ fn worst(dense: &[Vec<Orbit>], sparse: &[Vec<Orbit>]) -> f64 {
 fn case(system: &RotorSystem, reference: &RotorSystem, d: &Value, spin: f64) -> (f64, f64) {
     let model = damping(d.clone(), system.n());
     let dense = DampedModel::build(system, &model).unwrap();
-    let held = Held::new(system, &model).unwrap().expect("a sparse form");
     let top = 1.3 * dense.basis.omega[2];
+    let held = Held::new(system, &model, top).unwrap();
     // Spin speeds through the resonances, and 0 (where the loss's signs vanish).
     let speeds: Vec<f64> = (0..60).map(|i| top * i as f64 / 59.0).collect();
     let tr = |node: usize| system.translation(node).unwrap();
@@ -120,30 +120,13 @@ fn sparse_solve_is_the_dense_one() {
     }
 }
 
-/// The modal models have no sparse form.
-#[test]
-fn modal_models_have_no_sparse_form() {
-    let system = assemble(common::stepped_rotor(
-        30,
-        common::tabulated_bearing(),
-        0.002,
-    ));
-    for d in [
-        json!({"model": "equivalent"}),
-        json!({"model": "nonviscous"}),
-    ] {
-        let model = damping(d, system.n());
-        assert!(Held::new(&system, &model).unwrap().is_none());
-    }
-}
-
 fn f(v: &Value) -> f64 {
     v.as_f64().unwrap()
 }
 
 /// Over HTTP a rotor past 600 coordinates is held sparse (and says so), its unbalance
 /// response equal to the dense full model's solved here; past the dense limit
-/// (`WHIRL_MAX_DOFS`) it answers where it was a 422, the modal models still refused there.
+/// (`WHIRL_MAX_DOFS`) it answers where it was a 422, the equivalent model too.
 #[tokio::test]
 async fn held_sparse_over_http() {
     let rotor = common::stepped_rotor(150, common::tabulated_bearing(), 0.002);
@@ -198,10 +181,11 @@ async fn held_sparse_over_http() {
     let (status, out) = post_json("/v1/unbalance-response", &body).await;
     assert_eq!(status, 200, "{out}");
     assert_eq!(out["full_model"], "sparse");
+    // The equivalent model too, its dampers on the lowest modes (`tests/damping_large.rs`).
     body["damping"] = json!({"model": "equivalent"});
     let (status, out) = post_json("/v1/unbalance-response", &body).await;
-    assert_eq!(status, 422, "{out}");
-    assert!(out.to_string().contains("WHIRL_MAX_DOFS"), "{out}");
+    assert_eq!(status, 200, "{out}");
+    assert_eq!(out["full_model"], "sparse");
 }
 
 /// The bundled train (three shafts, two couplings, six cross-coupled bearings) meshed with

@@ -8,6 +8,7 @@ use super::poles::{self, Whirl};
 use super::reduction::{Reduction, reduce_for_sweep};
 use super::stability::{Threshold, sweep, threshold};
 use super::tracking::{Ambiguity, Tracker};
+use crate::damping::dampers::ModalDampers;
 use crate::damping::{DampedModel, ModelKind};
 use crate::linalg::{self, c64};
 use crate::model::damping::DampingModel;
@@ -234,13 +235,14 @@ pub fn campbell_below(
 pub fn campbell_large(
     system: &RotorSystem,
     damping: &DampingModel,
+    dampers: Option<&ModalDampers>,
     speeds: &[f64],
     keep: Keep,
     max_states: usize,
     control: &Control,
 ) -> Result<CampbellResult, AnalysisError> {
     let (model, reduction) =
-        super::large::reduce_for_sweep(system, damping, speeds, keep.below, max_states)?;
+        super::large::reduce_for_sweep(system, damping, dampers, speeds, keep.below, max_states)?;
     let mut r = campbell_kept(&model, speeds, keep, control)?;
     r.reduction = Some(reduction);
     Ok(r)

@@ -72,20 +72,27 @@ pub fn modal_large(
     bound: f64,
 ) -> Result<ModalResult, AnalysisError> {
     let radius = std::f64::consts::SQRT_2 * bound;
-    let pairs = large::full_modes(system, damping, speed, radius).map_err(|e| match e {
-        AnalysisError::Linalg(LinalgError::NoConvergence) => {
-            AnalysisError::Damping(DampingError::Unsolvable(format!(
-                "the poles within {radius:.6e} rad/s of the origin did not converge in the \
+    let dampers = large::dampers(system, damping, bound)?;
+    let dampers = dampers.as_ref();
+    let pairs =
+        large::full_modes(system, damping, dampers, speed, radius).map_err(|e| match e {
+            AnalysisError::Linalg(LinalgError::NoConvergence) => {
+                AnalysisError::Damping(DampingError::Unsolvable(format!(
+                    "the poles within {radius:.6e} rad/s of the origin did not converge in the \
                  Arnoldi space a rotor held sparse is solved in (about 100 poles): lower \
                  `max_frequency`"
-            )))
-        }
-        e => e,
-    })?;
+                )))
+            }
+            e => e,
+        })?;
     // Each closed by shift-invert at itself: Arnoldi about one shift places a non-normal
     // model's poles far from it to about 1e-8 only (the doubled model's on cross-coupled
     // bearings, `tests/modal_large.rs`), a factor at the pole to round-off.
-    let full = Full::Sparse { system, damping };
+    let full = Full::Sparse {
+        system,
+        damping,
+        dampers,
+    };
     let pairs: Vec<(c64, Vec<c64>)> = pairs
         .into_par_iter()
         .map(|(s, x)| Ok((nearest_pole(full, speed, s)?.unwrap_or(s), x)))

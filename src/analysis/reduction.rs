@@ -70,6 +70,9 @@ pub struct Reduction {
     /// For a sweep, the poles it reported outside the checked box, refined on the full model
     /// ([`super::refine`]).
     pub outside: Option<Outside>,
+    /// The equivalent or nonviscous model held sparse: the modes with dampers and the highest
+    /// one's natural frequency, rad/s (`damping::dampers`).
+    pub dampers: Option<(usize, f64)>,
 }
 
 /// What refining the poles outside the checked box did.
@@ -248,6 +251,7 @@ pub fn reduce_checked(
                 max_relative_error: error,
                 sparse: false,
                 outside: None,
+                dampers: None,
             };
             return Ok(Some(Reduced {
                 system: reduced,

@@ -22,6 +22,7 @@ use rayon::prelude::*;
 use super::AnalysisError;
 use super::campbell::{Branch, CampbellResult, forward_criticals};
 use super::reduction::Outside;
+use crate::damping::dampers::ModalDampers;
 use crate::damping::{DampedModel, DampingError, ModelKind, large};
 use crate::linalg::{LinalgError, arnoldi, c64};
 use crate::model::damping::DampingModel;
@@ -53,6 +54,8 @@ pub enum Full<'a> {
     Sparse {
         system: &'a RotorSystem,
         damping: &'a DampingModel,
+        /// The equivalent and nonviscous models' dampers (`damping::dampers`).
+        dampers: Option<&'a ModalDampers>,
     },
     /// The others: the dense full model's structured shift-invert.
     Dense(&'a DampedModel),
@@ -62,7 +65,11 @@ impl<'a> Full<'a> {
     /// Sparse where the damping model has a sparse form, else `full`.
     pub fn of(system: &'a RotorSystem, damping: &'a DampingModel, full: &'a DampedModel) -> Self {
         match damping {
-            DampingModel::Viscous | DampingModel::Hysteretic => Full::Sparse { system, damping },
+            DampingModel::Viscous | DampingModel::Hysteretic => Full::Sparse {
+                system,
+                damping,
+                dampers: None,
+            },
             _ => Full::Dense(full),
         }
     }
@@ -234,12 +241,18 @@ pub fn nearest_pole(full: Full, speed: f64, s: c64) -> Result<Option<c64>, Analy
 /// The full model's eigenvalue nearest each of `poles` at spin speed `speed`.
 fn refine_at(full: Full, speed: f64, poles: &[c64]) -> Result<Vec<Found>, AnalysisError> {
     match full {
-        Full::Sparse { system, damping } => {
-            let problems = large::problems(system, damping, speed).ok_or_else(|| {
-                AnalysisError::Damping(DampingError::Unsolvable(
-                    "this damping model has no sparse form".into(),
-                ))
-            })?;
+        Full::Sparse {
+            system,
+            damping,
+            dampers,
+        } => {
+            let problems =
+                large::problems(system, damping, dampers.map(|d| d.at(system, speed)), speed)
+                    .ok_or_else(|| {
+                        AnalysisError::Damping(DampingError::Unsolvable(
+                            "this damping model has no sparse form".into(),
+                        ))
+                    })?;
             poles
                 .iter()
                 .map(|&s| {
@@ -250,7 +263,10 @@ fn refine_at(full: Full, speed: f64, poles: &[c64]) -> Result<Vec<Found>, Analys
                             op.states(),
                             |b| op.solve(b),
                             s,
-                            |t, _| p.consistent(t, speed),
+                            |t, z| {
+                                p.consistent(t, speed)
+                                    && (p.internal() == 0 || p.rotor_fraction(z) >= ROTOR_FRACTION)
+                            },
                         )?);
                     }
                     Ok(settle(s, searches))

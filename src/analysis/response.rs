@@ -23,6 +23,7 @@
 use super::AnalysisError;
 use super::audit::frequency::{self, Harmonic, Orbit, Steady};
 use super::reduction::with_supports;
+use crate::damping::dampers::ModalDampers;
 use crate::damping::{DampedModel, large};
 use crate::fem::modal::ModalBasis;
 use crate::linalg::sparse::LuPattern;
@@ -77,28 +78,28 @@ pub enum Full<'a> {
     Sparse(&'a Held),
 }
 
-/// A large rotor's damping model (viscous, or hysteretic) and the pattern of its dynamic
-/// stiffness, analysed once.
+/// A large rotor's damping model (viscous, hysteretic, or the equivalent and nonviscous
+/// models' dampers on its lowest modes) and the pattern of its dynamic stiffness, analysed once.
 pub struct Held {
     hysteretic: bool,
     pattern: LuPattern,
+    dampers: Option<Box<ModalDampers>>,
 }
 
 impl Held {
-    /// `None` for the damping models without a sparse form (built on a modal basis).
+    /// The model of responses up to `bound` rad/s (the equivalent and nonviscous models'
+    /// dampers on the modes up to 16 times it, `damping::dampers`).
     pub fn new(
         system: &RotorSystem,
         damping: &DampingModel,
-    ) -> Result<Option<Self>, AnalysisError> {
-        let hysteretic = match damping {
-            DampingModel::Viscous => false,
-            DampingModel::Hysteretic => true,
-            _ => return Ok(None),
-        };
-        Ok(Some(Held {
+        bound: f64,
+    ) -> Result<Self, AnalysisError> {
+        let hysteretic = matches!(damping, DampingModel::Hysteretic);
+        Ok(Held {
             hysteretic,
             pattern: large::parts_of(system, hysteretic, 0.0).pattern()?,
-        }))
+            dampers: super::large::dampers(system, damping, bound)?.map(Box::new),
+        })
     }
 }
 
@@ -316,6 +317,7 @@ impl<'a> Responses<'a> {
                 solver: Solver::Sparse {
                     pattern: &held.pattern,
                     parts: large::parts_of(self.system, held.hysteretic, speed),
+                    terms: held.dampers.as_ref().map(|d| d.at(self.system, speed)),
                     speed,
                     system: self.system,
                 },
@@ -348,6 +350,7 @@ enum Solver<'r> {
     Sparse {
         parts: large::Parts,
         pattern: &'r LuPattern,
+        terms: Option<std::sync::Arc<large::Terms>>,
         speed: f64,
         system: &'r RotorSystem,
     },
@@ -405,10 +408,11 @@ impl At<'_> {
             Solver::Sparse {
                 parts,
                 pattern,
+                terms,
                 speed,
                 system,
             } => frequency::amplitudes(system.n(), system.layout(), omega, force, |l, rhs| {
-                Ok(parts.steady(pattern, l, *speed, rhs)?)
+                Ok(parts.steady(pattern, l, *speed, rhs, terms.as_ref())?)
             }),
         }
     }

@@ -175,10 +175,6 @@ pub fn build(model: &Model) -> Result<(RotorSystem, DampedModel), RunError> {
     Ok((system, damped))
 }
 
-/// What a large rotor's harmonic response is solved for (the parse holds no other sparse).
-const SPARSE_MODELS: &str =
-    "a rotor this large has harmonic responses of the viscous and hysteretic models only";
-
 /// Why a large rotor's time response failed: it is integrated on a checked reduction only.
 const NOT_REDUCED: &str = "no modal reduction of this rotor passed the check against its full \
     model (every pole in the band within 1e-3 of its decay rate), and a rotor this large is not \
@@ -190,11 +186,14 @@ fn harmonic_model(
     sparse: bool,
     system: &RotorSystem,
     model: &Model,
+    bound: f64,
 ) -> Result<response::Owned, RunError> {
     Ok(match sparse {
         true => response::Owned::Sparse(
-            response::Held::new(system, &model.damping)?
-                .ok_or_else(|| RunError::Unsolvable(SPARSE_MODELS.into()))?,
+            response::Held::new(system, &model.damping, bound).map_err(|e| match e {
+                AnalysisError::Damping(e) => damping_error(e, &model.rotor),
+                e => e.into(),
+            })?,
         ),
         false => response::Owned::Dense(
             DampedModel::build(system, &model.damping)
@@ -241,9 +240,12 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                     below: *max_frequency,
                     lowest: None,
                 };
+                let dampers = super::large::dampers(&system, &model.damping, *max_frequency)?;
+                let dampers = dampers.as_ref();
                 let r = campbell::campbell_large(
                     &system,
                     &model.damping,
+                    dampers,
                     speeds,
                     keep,
                     *max_states,
@@ -253,6 +255,7 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                     let full = refine::Full::Sparse {
                         system: &system,
                         damping: &model.damping,
+                        dampers,
                     };
                     refine::outside_box(&mut r, full, *max_frequency)?;
                     Ok(r)
@@ -389,7 +392,11 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
             sparse,
         } => {
             let system = assemble(model)?;
-            let owned = harmonic_model(*sparse, &system, model)?;
+            let top = speeds
+                .as_slice()
+                .iter()
+                .fold(0.0, |a: f64, w| a.max(w.abs()));
+            let owned = harmonic_model(*sparse, &system, model, top)?;
             let full = owned.full();
             let dof = |n: usize| time::translation(&system, n);
             let loads: Vec<SteadyUnbalance> = unbalances
@@ -549,7 +556,10 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
             sparse,
         } => {
             let system = assemble(model)?;
-            let owned = harmonic_model(*sparse, &system, model)?;
+            let top = frequencies
+                .iter()
+                .fold(speed.abs(), |a: f64, w| a.max(w.abs()));
+            let owned = harmonic_model(*sparse, &system, model, top)?;
             let full = owned.full();
             let dof = |n: usize| time::translation(&system, n);
             let force = input.1.at(dof(input.0), system.n());

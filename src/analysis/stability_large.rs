@@ -44,8 +44,10 @@ pub fn stability_large(
     max_states: usize,
     control: &Control,
 ) -> Result<Bounded, AnalysisError> {
+    let dampers = super::large::dampers(system, damping, bound)?;
+    let dampers = dampers.as_ref();
     let (reduced, reduction) =
-        super::large::reduce_for_sweep(system, damping, speeds, bound, max_states)?;
+        super::large::reduce_for_sweep(system, damping, dampers, speeds, bound, max_states)?;
     let at = |w: f64| {
         poles_at(&reduced, w).map(|mut set| {
             set.rotor.retain(|p| in_box(p.s, bound));
@@ -54,7 +56,11 @@ pub fn stability_large(
         })
     };
     let (threshold, max_decay_rate) = curve_of(&at, speeds, control)?;
-    let full = Full::Sparse { system, damping };
+    let full = Full::Sparse {
+        system,
+        damping,
+        dampers,
+    };
     let (threshold, closed) = match threshold {
         Some(t) if t.speed > speeds[0] => {
             // The grid interval holding the reduced threshold bounds the secant.

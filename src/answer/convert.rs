@@ -203,6 +203,8 @@ pub fn reduction(d: &crate::analysis::reduction::Reduction) -> api::ReductionInf
             removed: o.removed,
             largest_change: o.largest_change,
         }),
+        damped_modes: d.dampers.map(|d| d.0),
+        damped_band: d.dampers.map(|d| d.1),
     }
 }
 

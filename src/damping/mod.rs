@@ -14,6 +14,7 @@
 //! state matrix is linear between them (`StateModel`). The modal bases are those of the
 //! nonrotating rotor, at rest.
 
+pub mod dampers;
 pub mod equivalent;
 pub mod harmonic;
 pub mod hysteretic;
@@ -164,13 +165,41 @@ impl DampedModel {
     /// (no rigid-body mode) for every model, and it is the basis of the equivalent and
     /// nonviscous models.
     pub fn build(system: &RotorSystem, model: &DampingModel) -> Result<Self, DampingError> {
+        Self::build_with(system, model, None)
+    }
+
+    /// The reduction `phi` (`system`, from [`ModalBasis::reduce`]) of a rotor held sparse
+    /// (`full`) under its equivalent or nonviscous `dampers`, projected on `phi`
+    /// ([`dampers::ModalDampers::projected`]) rather than rebuilt on the reduced rotor's modes.
+    pub fn projected(
+        system: &RotorSystem,
+        full: &RotorSystem,
+        model: &DampingModel,
+        dampers: &dampers::ModalDampers,
+        phi: &RMat,
+    ) -> Result<Self, DampingError> {
+        let points = match Schedule::applies(system) {
+            true => vec![Schedule::reference_speed(system)],
+            false => system.table_speeds(),
+        };
+        let points = if points.is_empty() { vec![0.0] } else { points };
+        let given = dampers.projected(full, phi, &points);
+        Self::build_with(system, model, Some(&given))
+    }
+
+    fn build_with(
+        system: &RotorSystem,
+        model: &DampingModel,
+        given: Option<&dampers::Projected>,
+    ) -> Result<Self, DampingError> {
         let layout = system.layout();
         // The viscous and hysteretic models need no modal basis: built beside it, on two
         // cores (on the unreduced compressor the basis took 6.6 ms of a 28 ms build).
-        let needs_basis = matches!(
-            model,
-            DampingModel::Equivalent { .. } | DampingModel::Nonviscous(_)
-        );
+        let needs_basis = given.is_none()
+            && matches!(
+                model,
+                DampingModel::Equivalent { .. } | DampingModel::Nonviscous(_)
+            );
         // The x/y modes only where a model is built on them; their frequencies otherwise.
         let modal = || -> Result<_, DampingError> {
             let all = ModalBasis::of(system)?;
@@ -250,6 +279,31 @@ impl DampedModel {
                         })
                         .collect();
                     Ok(ModelKind::Hysteretic(out))
+                }
+                DampingModel::Equivalent { .. } | DampingModel::Nonviscous(_)
+                    if given.is_some() =>
+                {
+                    let given = given.expect("given");
+                    linear(
+                        realized
+                            .iter()
+                            .zip(&given.per_point)
+                            .map(|(r, d)| match d {
+                                dampers::Damping::Equivalent {
+                                    rotating,
+                                    nonrotating,
+                                } => state(
+                                    &SecondOrder::with_damping(
+                                        r,
+                                        &(&r.damping_nonrotating + nonrotating),
+                                        &(&r.damping_rotating + rotating),
+                                    ),
+                                    &Branches::none(size),
+                                ),
+                                dampers::Damping::Branches(b) => state(&SecondOrder::viscous(r), b),
+                            })
+                            .collect(),
+                    )
                 }
                 DampingModel::Equivalent { .. } => linear(
                     realized

@@ -299,6 +299,40 @@ impl HermitianBasis {
         Ok(w2.iter().map(|w2| w2.sqrt()).collect())
     }
 
+    /// The lowest modes of [`HermitianBasis::of`]'s pencil until `enough(w^2 ascending)`
+    /// holds, by shift-invert Lanczos on its real form in `(x, y)` (sparse, built from the
+    /// rotor's bands and the supports' symmetric coefficients at rest as
+    /// [`Realized::undamped`] adds them): a large rotor's x/y modes at a cost linear in its
+    /// size. Each real mode `psi = (x, y)` is `phi = T psi = (x + i y, x - i y)`, so that
+    /// `phi^H M phi = psi^T (T^H M T) psi = 1`.
+    pub fn lowest(
+        system: &RotorSystem,
+        enough: impl Fn(&[f64]) -> bool,
+    ) -> Result<Self, ModalError> {
+        let (k, m) = real_pencil(system);
+        let modes = linalg::lanczos::lowest_modes(&k, &m, enough).map_err(|e| match e {
+            LinalgError::NotPositiveDefinite => ModalError::RigidBody {
+                mode: 1,
+                omega_squared: 0.0,
+            },
+            e => ModalError::Linalg(e),
+        })?;
+        let largest = (0..k.nrows())
+            .map(|i| k.get(i, i) / m.get(i, i))
+            .filter(|r| r.is_finite())
+            .fold(0.0, f64::max);
+        supported_below(&modes.omega_squared, largest)?;
+        let n = system.n();
+        let psi = &modes.phi;
+        Ok(HermitianBasis {
+            omega: modes.omega_squared.iter().map(|w2| w2.sqrt()).collect(),
+            phi: CMat::from_fn(2 * n, psi.ncols(), |r, c| {
+                let (x, y) = (psi[(r % n, c)], psi[(n + r % n, c)]);
+                c64::new(x, if r < n { y } else { -y })
+            }),
+        })
+    }
+
     /// The lowest `count` modes.
     pub fn truncated(&self, count: usize) -> Self {
         let count = count.min(self.omega.len());
@@ -309,9 +343,73 @@ impl HermitianBasis {
     }
 }
 
+/// `(T^H K T, T^H M T)` of the undamped nonrotating rotor in doubled coordinates (what
+/// [`real_form`] makes of [`Realized::undamped`]), sparse: each entry `a` at `(i, j)` of the
+/// doubled matrix adds `conj(T_ip) a T_jq` at the four `(p, q)` of its real coordinates.
+fn real_pencil(system: &RotorSystem) -> (Sparse, Sparse) {
+    let n = system.n();
+    let i1 = c64::new(0.0, 1.0);
+    // T's entry at row `i` (block `i / n`) of column `c` (x below n, y from n).
+    let t = |i: usize, c: usize| match (c >= n, i >= n) {
+        (false, _) => c64::new(1.0, 0.0),
+        (true, false) => i1,
+        (true, true) => -i1,
+    };
+    let real = |entries: &[(usize, usize, c64)]| {
+        let mut out = Vec::with_capacity(4 * entries.len());
+        for &(i, j, a) in entries {
+            for p in [i % n, n + i % n] {
+                for q in [j % n, n + j % n] {
+                    out.push((p, q, (t(i, p).conj() * a * t(j, q)).re));
+                }
+            }
+        }
+        Sparse::from_triplets(2 * n, 2 * n, &out)
+    };
+    let (k, m) = undamped_doubled(system);
+    (real(&k), real(&m))
+}
+
+/// The doubled undamped pencil's entries: the rotor's matrices on both diagonal blocks (its
+/// circulatory part `+i` on `r`, `-i` on `conj r`) and each support's symmetric coefficients at
+/// rest as [`crate::system::point_action`] places them.
+#[allow(clippy::type_complexity)]
+pub fn undamped_doubled(
+    system: &RotorSystem,
+) -> (Vec<(usize, usize, c64)>, Vec<(usize, usize, c64)>) {
+    let n = system.n();
+    let (mut k, mut m) = (vec![], vec![]);
+    let blocks = |out: &mut Vec<(usize, usize, c64)>, a: &Sparse, f: c64| {
+        for (i, j, v) in a.entries() {
+            out.push((i, j, f * v));
+            out.push((n + i, n + j, f.conj() * v));
+        }
+    };
+    blocks(&mut k, &system.stiffness(), c64::new(1.0, 0.0));
+    blocks(&mut k, &system.circulatory, c64::new(0.0, 1.0));
+    blocks(&mut m, &system.mass, c64::new(1.0, 0.0));
+    for p in &system.supports {
+        let c = p.support.at_rest();
+        let w = p.at.weights();
+        for (out, a) in [(&mut k, c.k.symmetric()), (&mut m, c.m.symmetric())] {
+            let act = crate::system::point_action(&a, Layout::Doubled);
+            for &(i, wi) in &w {
+                for &(j, wj) in &w {
+                    for b in 0..2 {
+                        for d in 0..2 {
+                            out.push((i + b * n, j + d * n, act[(b, d)] * (wi * wj)));
+                        }
+                    }
+                }
+            }
+        }
+    }
+    (k, m)
+}
+
 /// `(K, M)` of the rotor's axisymmetric modes: supports in the general form count with the
 /// symmetric parts of their coefficients at rest, averaged over the directions.
-fn pencil(system: &RotorSystem) -> (Sparse, Sparse) {
+pub fn pencil(system: &RotorSystem) -> (Sparse, Sparse) {
     if system.supports.is_empty() {
         (system.stiffness(), system.mass.clone())
     } else {

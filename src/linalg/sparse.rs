@@ -273,6 +273,11 @@ impl Lu {
         Ok(Lu { lu, n })
     }
 
+    /// `B <- A^-1 B`, every column at once.
+    pub fn solve_columns(&self, b: &mut Mat<c64>) {
+        self.lu.solve_in_place(b.as_mut());
+    }
+
     /// `b <- A^-1 b`.
     pub fn solve_in_place(&self, b: &mut [c64]) {
         let mut x = Mat::<c64>::from_fn(self.n, 1, |i, _| b[i]);

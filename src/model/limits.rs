@@ -100,6 +100,17 @@ pub fn sparse_bytes_per_coordinate(doubled: bool) -> u64 {
 /// (measured about 1.4 kB on a 2000-element shaft on cross-coupled bearings, `tests/memory.rs`).
 pub const SPARSE_HARMONIC_BYTES: u64 = 4096;
 
+/// Most modes the equivalent and nonviscous models of a rotor held sparse put dampers on
+/// (`damping::dampers`; x/y modes of doubled coordinates count one each).
+pub const MAX_DAMPED_MODES: usize = 120;
+
+/// Heap per coordinate `N` of those dampers, bytes: each damped mode's shape and column (and
+/// its column's spun copy), and one solve per damper in each shift-invert factor alive (one
+/// per compute thread and the check's).
+pub fn damper_bytes_per_coordinate(threads: usize) -> u64 {
+    16 * MAX_DAMPED_MODES as u64 * (3 + 2 * (threads as u64 + 1))
+}
+
 /// Most modes of a critical speed map held sparse: each stiffness's Lanczos run keeps about
 /// twice as many vectors of the rotor's size (more, and the dense solve is the cheaper).
 pub const MAX_SPARSE_MODES: usize = 100;
@@ -220,6 +231,12 @@ impl Cost {
 
     pub fn with_work(mut self, work: f64) -> Self {
         self.work = work;
+        self
+    }
+
+    /// This cost with `bytes` more heap at its peak.
+    pub fn plus_bytes(mut self, bytes: u64) -> Self {
+        self.peak_bytes += bytes;
         self
     }
 }

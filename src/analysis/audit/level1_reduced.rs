@@ -156,7 +156,15 @@ pub fn level1_reduced(
                     bound,
                     criterion,
                 };
-                large::reduce(system, damping, basis.clone(), &check, &dofs, usize::MAX)?
+                large::reduce(
+                    system,
+                    damping,
+                    None,
+                    basis.clone(),
+                    &check,
+                    &dofs,
+                    usize::MAX,
+                )?
             }
         };
         let Some(red) = red else {
@@ -190,7 +198,7 @@ pub fn level1_reduced(
             Full::Dense(_) => {
                 reduction::band_error(&DampedModel::build(&exact, damping)?, &approx, speed, bound)?
             }
-            Full::Sparse(_) => large::band_error(&exact, damping, &approx, speed, bound)?,
+            Full::Sparse(_) => large::band_error(&exact, damping, None, &approx, speed, bound)?,
         };
         if error > CHECK {
             break;

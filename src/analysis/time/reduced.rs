@@ -110,7 +110,8 @@ pub fn solve_sparse(
         bound,
         criterion: Criterion::Response(RESPONSE_TOLERANCE),
     };
-    let Ok(mut widening) = large::Widening::new(system, damping, basis, &check, &loads, usize::MAX)
+    let Ok(mut widening) =
+        large::Widening::new(system, damping, None, basis, &check, &loads, usize::MAX)
     else {
         return Ok(None);
     };
@@ -124,7 +125,7 @@ pub fn solve_sparse(
     let check = &check;
     let (exact, first) = std::thread::scope(|scope| {
         let helper = scope.spawn(move || {
-            let exact = large::exact_poles(system, damping, check)?;
+            let exact = large::exact_poles(system, damping, None, check)?;
             let approx = rx
                 .recv()
                 .ok()

@@ -312,6 +312,14 @@ pub struct ReductionInfo {
     /// not cover: each replaced by the full model's pole nearest it at its speed.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub outside_box: Option<OutsideBox>,
+    /// The equivalent or nonviscous model of a rotor held sparse: its dampers are on the
+    /// undamped modes up to 16 times `max_frequency` (or the request's `modes`), this many
+    /// (x/y modes each, on supports that are not isotropic; the dense models damp every mode).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub damped_modes: Option<usize>,
+    /// Natural frequency of the highest of those modes, rad/s.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub damped_band: Option<f64>,
 }
 
 /// The poles of a reduced sweep outside the box its reduction was checked in (see

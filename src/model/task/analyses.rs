@@ -10,10 +10,10 @@ impl ModalRequest {
         let bound = self
             .max_frequency
             .and_then(|f| typed_speed(&mut bad, "max_frequency", f, positive));
-        // Only a bounded modal analysis (of the viscous or hysteretic model) holds a large
-        // rotor sparse: every pole of it is not asked for.
+        // Only a bounded modal analysis holds a large rotor sparse: every pole of it is not
+        // asked for.
         let (model, sparse) =
-            Model::parse_held(bound.is_some(), &self.rotor, &self.damping, limits, bad)?;
+            Model::parse_held_damped(bound.is_some(), &self.rotor, &self.damping, limits, bad)?;
         let size = model.size();
         let n = size.dofs as u64;
         let cost = match sparse {
@@ -21,7 +21,8 @@ impl ModalRequest {
             true => {
                 let poles = SPARSE_ARNOLDI as u64 / 2;
                 let values = poles * (5 + 3 * model.rotor.node_count() as u64) + n;
-                let linear = n * sparse_bytes_per_coordinate(model.rotor.doubled());
+                let linear = n * sparse_bytes_per_coordinate(model.rotor.doubled())
+                    + model.damper_bytes(limits);
                 let response_bytes = values * BYTES_PER_VALUE;
                 Cost {
                     size,
@@ -69,7 +70,8 @@ impl SweepRequest {
             bad.push("modes", format!("must be an integer >= 1 (got {m})"));
         }
         let grid = speeds(&self.speeds, limits, &mut bad);
-        let (model, sparse) = Model::parse_held(hold, &self.rotor, &self.damping, limits, bad)?;
+        let (model, sparse) =
+            Model::parse_held_damped(hold, &self.rotor, &self.damping, limits, bad)?;
         Ok((model, grid.expect("validated"), sparse))
     }
 
@@ -97,7 +99,8 @@ impl SweepRequest {
         let branches = modes.map_or(rotor_poles, |m| m as u64);
         let values = count as u64 * (1 + 2 * branches);
         let cost = match sparse {
-            true => sparse_sweep_cost(size, model.rotor.doubled(), count, limits, values),
+            true => sparse_sweep_cost(size, model.rotor.doubled(), count, limits, values)
+                .plus_bytes(model.damper_bytes(limits)),
             false => sweep_cost(size, count, limits, true, values),
         };
         let bounded = self.max_frequency.is_none() && modes.is_none();
@@ -134,7 +137,8 @@ impl SweepRequest {
         let values = 2 * count as u64 + 8;
         let (cost, held) = match sparse {
             true => (
-                sparse_sweep_cost(size, model.rotor.doubled(), count, limits, values),
+                sparse_sweep_cost(size, model.rotor.doubled(), count, limits, values)
+                    .plus_bytes(model.damper_bytes(limits)),
                 Some((
                     self.max_frequency.map_or(f64::INFINITY, SpeedInput::rad_s),
                     sparse_states(limits),

@@ -468,7 +468,8 @@ impl FrequencyResponseRequest {
                 "must be > 0 (the response to a static load is /v1/static)",
             );
         }
-        let (model, sparse) = Model::parse_held(true, &self.rotor, &self.damping, limits, bad)?;
+        let (model, sparse) =
+            Model::parse_held_damped(true, &self.rotor, &self.damping, limits, bad)?;
         let mut bad = Invalid::default();
         let nodes = model.rotor.node_count();
         let input = node_index(&mut bad, "input.node".into(), self.input.node, nodes);
@@ -484,6 +485,7 @@ impl FrequencyResponseRequest {
         let extra = threads * 3 * 16 * s * s + count * 64;
         let work = count as f64 * (s * s * s) as f64 * 3.0;
         let speed = speed.expect("validated");
+        let damper_bytes = model.damper_bytes(limits);
         Task {
             output_unit: self.output_unit.unwrap_or_default(),
             warnings: model.warnings(speed, speed),
@@ -497,7 +499,8 @@ impl FrequencyResponseRequest {
                 sparse,
             },
             cost: match sparse {
-                true => sparse_harmonic_cost(size, limits, count, count * 10 + 16),
+                true => sparse_harmonic_cost(size, limits, count, count * 10 + 16)
+                    .plus_bytes(damper_bytes),
                 false => Cost::new(size, 0, 0, extra, count * 10 + 16).with_work(work),
             },
         }

@@ -226,7 +226,8 @@ impl UnbalanceResponseRequest {
         if self.unbalances.is_empty() {
             bad.push("unbalances", "needs at least one unbalance");
         }
-        let (model, sparse) = Model::parse_held(true, &self.rotor, &self.damping, limits, bad)?;
+        let (model, sparse) =
+            Model::parse_held_damped(true, &self.rotor, &self.damping, limits, bad)?;
         let mut bad = Invalid::default();
         let nodes = model.rotor.node_count();
         let mut unbalances = vec![];
@@ -258,7 +259,8 @@ impl UnbalanceResponseRequest {
         let work = count as f64 * (s * s * s) as f64 * 3.0;
         // The sweep, then at most about two sweeps more to refine the peaks.
         let cost = match sparse {
-            true => sparse_harmonic_cost(size, limits, 3 * count + 64, values),
+            true => sparse_harmonic_cost(size, limits, 3 * count + 64, values)
+                .plus_bytes(model.damper_bytes(limits)),
             false => Cost::new(size, 0, 0, extra, values).with_work(work),
         };
         let (lo, hi) = speeds.range();

@@ -12,8 +12,9 @@ use super::damping::BranchSet;
 use super::damping::DampingModel;
 use super::error::{Invalid, finite, non_negative, positive};
 use super::limits::{
-    BATCH_PER_THREAD, BYTES_PER_VALUE, Cost, Limits, SPARSE_ARNOLDI, SPARSE_FROM,
-    SPARSE_HARMONIC_BYTES, SPARSE_REDUCED_STATES, Size, sparse_bytes_per_coordinate,
+    BATCH_PER_THREAD, BYTES_PER_VALUE, Cost, Limits, MAX_DAMPED_MODES, SPARSE_ARNOLDI, SPARSE_FROM,
+    SPARSE_HARMONIC_BYTES, SPARSE_REDUCED_STATES, Size, damper_bytes_per_coordinate,
+    sparse_bytes_per_coordinate,
 };
 use super::loads::{Excitation, Force, Pwl, SpeedLaw, TimeSpec, Unbalance, sample_count};
 use super::rotor::BeamRotor;
@@ -23,6 +24,7 @@ use super::supports::held_warning;
 
 mod analyses;
 mod audit;
+mod held;
 mod loads;
 mod report;
 
@@ -66,50 +68,6 @@ impl Model {
         let model = Model { rotor, damping };
         model.check_states(limits, &mut bad);
         bad.into_result(|| model)
-    }
-
-    /// [`Model::parse`], the rotor held sparse where `allow` and it may be: the viscous and
-    /// hysteretic models (the rotor's own second-order system) of a beam rotor without Guyan
-    /// reduction past [`SPARSE_FROM`] coordinates, whose size is then bounded by
-    /// `max_sparse_dofs` and the memory estimate; any other is parsed against the dense limits.
-    /// `(model, held sparse)`.
-    pub fn parse_held(
-        allow: bool,
-        rotor: &RotorInput,
-        damping: &DampingInput,
-        limits: &Limits,
-        bad: Invalid,
-    ) -> Result<(Self, bool), Invalid> {
-        if allow
-            && matches!(
-                damping,
-                DampingInput::Viscous(_) | DampingInput::Hysteretic(_)
-            )
-        {
-            let relaxed = Limits {
-                max_states: usize::MAX,
-                ..limits.held_sparse()
-            };
-            // Errors phrased against the sparse limits; a model that parses but cannot be held
-            // sparse (small, Guyan-reduced, a matrix rotor) is parsed again with the dense ones.
-            let model = Model::parse(rotor, damping, &relaxed, bad.clone())?;
-            if model.held_sparse() {
-                return Ok((model, true));
-            }
-        }
-        Ok((Model::parse(rotor, damping, limits, bad)?, false))
-    }
-
-    /// Whether this model may be held sparse (see [`Model::parse_held`]).
-    fn held_sparse(&self) -> bool {
-        let size = self.size();
-        matches!(self.rotor, Rotor::Beam(_))
-            && matches!(
-                self.damping,
-                DampingModel::Viscous | DampingModel::Hysteretic
-            )
-            && size.dofs > SPARSE_FROM
-            && size.assembled == size.dofs
     }
 
     /// Sizes of the model as solved, with `branches` per nonviscous damper (its own when

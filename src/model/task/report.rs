@@ -99,9 +99,10 @@ impl ReportRequest {
     fn sparse_models(&self) -> Result<(), Invalid> {
         let sparse =
             |d: &DampingInput| matches!(d, DampingInput::Viscous(_) | DampingInput::Hysteretic(_));
-        let why = "a rotor past WHIRL_MAX_DOFS is held sparse, where only the viscous and \
-                   hysteretic models are solved (the equivalent and nonviscous models are built \
-                   on a dense modal basis)";
+        let why = "a rotor past WHIRL_MAX_DOFS is held sparse, where every part of the report \
+                   solves only the viscous and hysteretic models (the equivalent and nonviscous \
+                   models are held sparse in /v1/campbell, /v1/modal and /v1/stability with \
+                   max_frequency and in the harmonic responses, not yet in Level I)";
         if !sparse(&self.damping) {
             return Err(Invalid::one("damping", why));
         }

@@ -1,0 +1,112 @@
+//! Rotors held sparse: which analyses and models may hold a large rotor in sparse matrices
+//! rather than parse it against the dense limits, and what the equivalent and nonviscous
+//! models' dampers then cost.
+
+use super::*;
+
+impl Model {
+    /// [`Model::parse`], the rotor held sparse where `allow` and it may be: the viscous and
+    /// hysteretic models (the rotor's own second-order system) of a beam rotor without Guyan
+    /// reduction past [`SPARSE_FROM`] coordinates, whose size is then bounded by
+    /// `max_sparse_dofs` and the memory estimate; any other is parsed against the dense limits.
+    /// `(model, held sparse)`.
+    pub fn parse_held(
+        allow: bool,
+        rotor: &RotorInput,
+        damping: &DampingInput,
+        limits: &Limits,
+        bad: Invalid,
+    ) -> Result<(Self, bool), Invalid> {
+        Self::parse_held_as(allow, false, rotor, damping, limits, bad)
+    }
+
+    /// [`Model::parse_held`] for the analyses that also hold the equivalent and nonviscous
+    /// models sparse (their dampers on the lowest modes, `damping::dampers`): the bounded
+    /// Campbell diagram, stability threshold and modal analysis.
+    pub fn parse_held_damped(
+        allow: bool,
+        rotor: &RotorInput,
+        damping: &DampingInput,
+        limits: &Limits,
+        bad: Invalid,
+    ) -> Result<(Self, bool), Invalid> {
+        Self::parse_held_as(allow, true, rotor, damping, limits, bad)
+    }
+
+    fn parse_held_as(
+        allow: bool,
+        damped: bool,
+        rotor: &RotorInput,
+        damping: &DampingInput,
+        limits: &Limits,
+        bad: Invalid,
+    ) -> Result<(Self, bool), Invalid> {
+        let own = matches!(
+            damping,
+            DampingInput::Viscous(_) | DampingInput::Hysteretic(_)
+        );
+        if allow && (own || damped) {
+            let relaxed = Limits {
+                max_states: usize::MAX,
+                ..limits.held_sparse()
+            };
+            // Errors phrased against the sparse limits; a model that parses but cannot be held
+            // sparse (small, Guyan-reduced, a matrix rotor) is parsed again with the dense ones.
+            let model = Model::parse(rotor, damping, &relaxed, bad.clone())?;
+            if model.held_sparse() {
+                model.check_dampers(bad)?;
+                return Ok((model, true));
+            }
+        }
+        Ok((Model::parse(rotor, damping, limits, bad)?, false))
+    }
+
+    /// Whether this model may be held sparse (see [`Model::parse_held`]; the model's damping
+    /// was checked by the caller).
+    fn held_sparse(&self) -> bool {
+        let size = self.size();
+        matches!(self.rotor, Rotor::Beam(_))
+            && size.dofs > SPARSE_FROM
+            && size.assembled == size.dofs
+    }
+
+    /// Heap of the equivalent or nonviscous model's dampers when held sparse (0 for the others).
+    pub fn damper_bytes(&self, limits: &Limits) -> u64 {
+        match self.damping {
+            DampingModel::Equivalent { .. } | DampingModel::Nonviscous(_) => {
+                self.size().dofs as u64 * damper_bytes_per_coordinate(limits.threads.max(1))
+            }
+            _ => 0,
+        }
+    }
+
+    /// The equivalent and nonviscous models held sparse put dampers on at most
+    /// [`MAX_DAMPED_MODES`] modes (each a column of the rotor's size).
+    fn check_dampers(&self, bad: Invalid) -> Result<(), Invalid> {
+        let modes = match &self.damping {
+            DampingModel::Equivalent { modes } => *modes,
+            DampingModel::Nonviscous(spec) => spec.modes,
+            _ => None,
+        };
+        let limit = match self.rotor.doubled() {
+            true => MAX_DAMPED_MODES / 2,
+            false => MAX_DAMPED_MODES,
+        };
+        match modes {
+            Some(m) if m > limit => {
+                let mut bad = bad;
+                bad.push(
+                    "damping.modes",
+                    format!(
+                        "a rotor of this size ({} coordinates) is held sparse, its dampers on \
+                         at most {limit} modes (got {m}); without `modes`, every mode up to \
+                         16 times `max_frequency`",
+                        self.size().dofs
+                    ),
+                );
+                Err(bad)
+            }
+            _ => Ok(()),
+        }
+    }
+}
