@@ -10,7 +10,7 @@ mod common;
 
 use common::post_json;
 use serde_json::{Value, json};
-use whirl::analysis::audit::frequency::{Excitation, Orbit};
+use whirl::analysis::audit::frequency::Excitation;
 use whirl::analysis::control::Control;
 use whirl::analysis::modal::{ModalResult, modal_bounded, modal_large};
 use whirl::analysis::response::{Full, Held, frequency_sweep, unbalance_sweep};
@@ -114,20 +114,6 @@ fn dampers_on_the_modes_below_sixteen_times_the_bound() {
     }
 }
 
-/// Largest `|a - a'| + |b - b'|` over every orbit, relative to the largest `|a| + |b|`.
-fn worst(dense: &[Vec<Orbit>], sparse: &[Vec<Orbit>]) -> f64 {
-    let (mut diff, mut top) = (0.0f64, 0.0f64);
-    for (d, s) in dense.iter().zip(sparse) {
-        assert_eq!(d.len(), s.len());
-        for (d, s) in d.iter().zip(s) {
-            diff = diff.max((d.a - s.a).norm() + (d.b - s.b).norm());
-            top = top.max(d.a.norm() + d.b.norm());
-        }
-    }
-    assert!(top > 0.0);
-    diff / top
-}
-
 /// The harmonic responses held sparse (one sparse factor of `Z0(i omega)` per frequency, the
 /// dampers through the Woodbury identity, the branches eliminated at `i omega`) against the
 /// dense models' `Z X = F`, every mode damped, 30 elements on isotropic and on cross-coupled
@@ -162,7 +148,7 @@ fn harmonic_responses_held_sparse_are_the_dense_ones() {
                     .unwrap()
                     .0
             };
-            let u = worst(&sweep(Full::Dense(&dense)), &sweep(Full::Sparse(&held)));
+            let u = common::worst(&sweep(Full::Dense(&dense)), &sweep(Full::Sparse(&held)));
             let force = Excitation::Direction(0.5).at(tr(12), n);
             let freqs: Vec<f64> = (1..=60).map(|i| top * i as f64 / 60.0).collect();
             let response = |full: Full| {
@@ -180,7 +166,7 @@ fn harmonic_responses_held_sparse_are_the_dense_ones() {
                 .unwrap();
                 r.into_iter().map(|o| vec![o]).collect::<Vec<_>>()
             };
-            let f = worst(
+            let f = common::worst(
                 &response(Full::Dense(&dense)),
                 &response(Full::Sparse(&held)),
             );

@@ -11,7 +11,7 @@ mod common;
 
 use common::{assemble, floats, post_json};
 use serde_json::{Value, json};
-use whirl::analysis::audit::frequency::{Excitation, Orbit};
+use whirl::analysis::audit::frequency::Excitation;
 use whirl::analysis::control::Control;
 use whirl::analysis::response::{Full, Held, frequency_sweep, unbalance_sweep};
 use whirl::analysis::unbalance::SteadyUnbalance;
@@ -23,20 +23,6 @@ use whirl::system::RotorSystem;
 fn damping(v: Value, n: usize) -> DampingModel {
     let d: DampingInput = serde_json::from_value(v).unwrap();
     DampingModel::parse(&d, Some(n)).unwrap()
-}
-
-/// Largest `|a - a'| + |b - b'|` over every orbit, relative to the largest `|a| + |b|`.
-fn worst(dense: &[Vec<Orbit>], sparse: &[Vec<Orbit>]) -> f64 {
-    let (mut diff, mut top) = (0.0f64, 0.0f64);
-    for (d, s) in dense.iter().zip(sparse) {
-        assert_eq!(d.len(), s.len());
-        for (d, s) in d.iter().zip(s) {
-            diff = diff.max((d.a - s.a).norm() + (d.b - s.b).norm());
-            top = top.max(d.a.norm() + d.b.norm());
-        }
-    }
-    assert!(top > 0.0);
-    diff / top
 }
 
 /// The unbalance response over 0 to 1.3 times the third natural frequency at rest, sparse
@@ -64,7 +50,7 @@ fn case(system: &RotorSystem, reference: &RotorSystem, d: &Value, spin: f64) -> 
             .unwrap()
             .0
     };
-    let u = worst(&sweep(Full::Dense(&dense)), &sweep(Full::Sparse(&held)));
+    let u = common::worst(&sweep(Full::Dense(&dense)), &sweep(Full::Sparse(&held)));
     let force = Excitation::Direction(0.5).at(tr(40), system.n());
     let freqs: Vec<f64> = (1..=60).map(|i| top * i as f64 / 60.0).collect();
     let response = |rotor: &RotorSystem, full: Full| {
@@ -83,7 +69,7 @@ fn case(system: &RotorSystem, reference: &RotorSystem, d: &Value, spin: f64) -> 
         r.into_iter().map(|o| vec![o]).collect::<Vec<_>>()
     };
     let dense_ref = DampedModel::build(reference, &model).unwrap();
-    let f = worst(
+    let f = common::worst(
         &response(reference, Full::Dense(&dense_ref)),
         &response(system, Full::Sparse(&held)),
     );

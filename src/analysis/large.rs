@@ -20,7 +20,8 @@
 use super::AnalysisError;
 use super::nearest;
 use super::reduction::{
-    Criterion, Reduced, Reduction, TOLERANCE, both_ways, checked_speeds, compared_at, with_supports,
+    Criterion, Reduced, Reduction, TOLERANCE, both_ways, checked_speeds, compared_at, distance,
+    with_supports,
 };
 use crate::damping::dampers::ModalDampers;
 use crate::damping::{DampedModel, DampingError, ModelKind, large};
@@ -60,23 +61,6 @@ pub fn dampers(
 ) -> Result<Option<ModalDampers>, AnalysisError> {
     ModalDampers::new(system, damping, bound)
         .map_err(|e| AnalysisError::Damping(DampingError::Modal(e)))
-}
-
-/// Largest distance from a value in `from` to the nearest in `to`, as `criterion` measures it.
-fn one_way(from: &[c64], to: &[c64], criterion: Criterion) -> f64 {
-    from.iter()
-        .map(|s| {
-            let nearest = to
-                .iter()
-                .map(|t| (s - t).norm())
-                .fold(f64::INFINITY, f64::min);
-            let scale = match criterion {
-                Criterion::Relative(_) => s.norm(),
-                Criterion::Response(_) => s.re.abs().max(1e-3 * s.norm()),
-            };
-            nearest / scale.max(f64::MIN_POSITIVE)
-        })
-        .fold(0.0, f64::max)
 }
 
 /// Why a large rotor's sweep could not be reduced: the dense full model is no fallback there.
@@ -199,7 +183,7 @@ impl Split {
                 .filter(|s| s.re.abs() <= bound && s.im.abs() <= bound)
                 .collect()
         };
-        one_way(&inside(&self.rotor), &all(other), criterion).max(one_way(
+        distance(&inside(&self.rotor), &all(other), criterion).max(distance(
             &inside(&other.rotor),
             &all(self),
             criterion,
@@ -333,7 +317,7 @@ impl<'a> Widening<'a> {
             let all: Vec<c64> = a.rotor.iter().chain(&a.others).copied().collect();
             for s in e.rotor.iter_mut() {
                 let inside = s.re.abs() <= check.bound && s.im.abs() <= check.bound;
-                if !inside || one_way(&[*s], &all, check.criterion) <= tolerance {
+                if !inside || distance(&[*s], &all, check.criterion) <= tolerance {
                     continue;
                 }
                 let mut best = *s;

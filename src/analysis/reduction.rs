@@ -313,7 +313,7 @@ pub fn with_supports(system: &RotorSystem, loads: &[usize]) -> Vec<usize> {
 }
 
 /// Largest distance from a value in `from` to the nearest in `to`, as `criterion` measures it.
-fn distance(from: &[c64], to: &[c64], criterion: Criterion) -> f64 {
+pub(super) fn distance(from: &[c64], to: &[c64], criterion: Criterion) -> f64 {
     from.iter()
         .map(|s| {
             let nearest = to

@@ -65,18 +65,7 @@ impl ModalBasis {
         enough: impl Fn(&[f64]) -> bool,
     ) -> Result<Self, ModalError> {
         let (k, m) = pencil(system);
-        let modes = linalg::lanczos::lowest_modes(&k, &m, enough).map_err(|e| match e {
-            LinalgError::NotPositiveDefinite => ModalError::RigidBody {
-                mode: 1,
-                omega_squared: 0.0,
-            },
-            e => ModalError::Linalg(e),
-        })?;
-        let largest = (0..k.nrows())
-            .map(|i| k.get(i, i) / m.get(i, i))
-            .filter(|r| r.is_finite())
-            .fold(0.0, f64::max);
-        supported_below(&modes.omega_squared, largest)?;
+        let modes = lowest_of(&k, &m, enough)?;
         Ok(ModalBasis {
             omega: modes.omega_squared.iter().map(|w2| w2.sqrt()).collect(),
             phi: modes.phi,
@@ -310,18 +299,7 @@ impl HermitianBasis {
         enough: impl Fn(&[f64]) -> bool,
     ) -> Result<Self, ModalError> {
         let (k, m) = real_pencil(system);
-        let modes = linalg::lanczos::lowest_modes(&k, &m, enough).map_err(|e| match e {
-            LinalgError::NotPositiveDefinite => ModalError::RigidBody {
-                mode: 1,
-                omega_squared: 0.0,
-            },
-            e => ModalError::Linalg(e),
-        })?;
-        let largest = (0..k.nrows())
-            .map(|i| k.get(i, i) / m.get(i, i))
-            .filter(|r| r.is_finite())
-            .fold(0.0, f64::max);
-        supported_below(&modes.omega_squared, largest)?;
+        let modes = lowest_of(&k, &m, enough)?;
         let n = system.n();
         let psi = &modes.phi;
         Ok(HermitianBasis {
@@ -341,6 +319,29 @@ impl HermitianBasis {
             phi: self.phi.subcols(0, count).to_owned(),
         }
     }
+}
+
+/// The lowest modes of the sparse pencil `(k, m)` by Lanczos, refused as a rotor not held in
+/// place (`K` not positive definite, or a mode with `w^2` below `1e-11` of the largest
+/// `K_ii / M_ii`, a lower bound of the highest mode's).
+fn lowest_of(
+    k: &Sparse,
+    m: &Sparse,
+    enough: impl Fn(&[f64]) -> bool,
+) -> Result<linalg::SymmetricModes, ModalError> {
+    let modes = linalg::lanczos::lowest_modes(k, m, enough).map_err(|e| match e {
+        LinalgError::NotPositiveDefinite => ModalError::RigidBody {
+            mode: 1,
+            omega_squared: 0.0,
+        },
+        e => ModalError::Linalg(e),
+    })?;
+    let largest = (0..k.nrows())
+        .map(|i| k.get(i, i) / m.get(i, i))
+        .filter(|r| r.is_finite())
+        .fold(0.0, f64::max);
+    supported_below(&modes.omega_squared, largest)?;
+    Ok(modes)
 }
 
 /// `(T^H K T, T^H M T)` of the undamped nonrotating rotor in doubled coordinates (what

@@ -222,3 +222,21 @@ pub fn stepped_three(
     let iso = assemble(stepped_rotor(elements, isotropic, 0.002));
     (iso, tabulated, constant)
 }
+
+/// Largest `|a - a'| + |b - b'|` over every orbit, relative to the largest `|a| + |b|`.
+#[allow(dead_code)]
+pub fn worst(
+    dense: &[Vec<whirl::analysis::audit::frequency::Orbit>],
+    sparse: &[Vec<whirl::analysis::audit::frequency::Orbit>],
+) -> f64 {
+    let (mut diff, mut top) = (0.0f64, 0.0f64);
+    for (d, s) in dense.iter().zip(sparse) {
+        assert_eq!(d.len(), s.len());
+        for (d, s) in d.iter().zip(s) {
+            diff = diff.max((d.a - s.a).norm() + (d.b - s.b).norm());
+            top = top.max(d.a.norm() + d.b.norm());
+        }
+    }
+    assert!(top > 0.0);
+    diff / top
+}
