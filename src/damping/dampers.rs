@@ -107,7 +107,12 @@ impl ModalDampers {
         };
         let keep = |omega: &[f64], copies: usize| match modes {
             Some(k) => (copies * k).min(omega.len()),
-            None => omega.iter().filter(|&&w| w <= top).count().max(1),
+            // At most the modes the memory estimate counts (`MAX_DAMPED_MODES`).
+            None => omega
+                .iter()
+                .filter(|&&w| w <= top)
+                .count()
+                .clamp(1, MAX_DAMPED_MODES),
         };
         let n = system.n();
         let doubled = system.layout() == Layout::Doubled;

@@ -178,12 +178,7 @@ impl DampedModel {
         dampers: &dampers::ModalDampers,
         phi: &RMat,
     ) -> Result<Self, DampingError> {
-        let points = match Schedule::applies(system) {
-            true => vec![Schedule::reference_speed(system)],
-            false => system.table_speeds(),
-        };
-        let points = if points.is_empty() { vec![0.0] } else { points };
-        let given = dampers.projected(full, phi, &points);
+        let given = dampers.projected(full, phi, &realization_speeds(system));
         Self::build_with(system, model, Some(&given))
     }
 
@@ -217,14 +212,7 @@ impl DampedModel {
         // One realization per speed of the supports' tables (one in all when constant), or,
         // with supports on ROSS's curves, one scheduled (`schedule.rs`).
         let scheduled = Schedule::applies(system);
-        let table = system.table_speeds();
-        let points = if scheduled {
-            vec![Schedule::reference_speed(system)]
-        } else if table.is_empty() {
-            vec![0.0]
-        } else {
-            table
-        };
+        let points = realization_speeds(system);
         let tabulate = |models: Vec<StateModel>| -> StateModel {
             if models.len() == 1 {
                 models.into_iter().next().expect("one")
@@ -373,5 +361,18 @@ impl DampedModel {
             ModelKind::Linear(m) => m.size(),
             ModelKind::Hysteretic(v) => v[0].model.size(),
         }
+    }
+}
+
+/// The speeds a model is realized at: the scheduled model's reference speed (supports on ROSS's
+/// curves), else the supports' table speeds, else rest.
+fn realization_speeds(system: &RotorSystem) -> Vec<f64> {
+    let table = system.table_speeds();
+    if Schedule::applies(system) {
+        vec![Schedule::reference_speed(system)]
+    } else if table.is_empty() {
+        vec![0.0]
+    } else {
+        table
     }
 }
