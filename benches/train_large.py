@@ -38,13 +38,16 @@ number to follow with the mesh (in the table's `value` column):
 - modal: hysteretic, at 500 rad/s, `max_frequency` 1500 rad/s; the first natural frequency.
 - stability: hysteretic, 31 speeds over 0-3000 rad/s, `max_frequency` 3000 rad/s; the threshold.
 - report: hysteretic, operating range 250-350 rad/s, comparing the hysteretic and viscous
-  models (the equivalent and nonviscous ones hold the rotor dense); the first forward critical
-  speed of its Campbell diagram.
+  models; the first forward critical speed of its Campbell diagram.
 - damping (nonviscous): past the dense limits it still holds the rotor dense (refused).
 - campbell-equ, campbell-non: the Campbell diagram above of the equivalent and nonviscous
   models (held sparse with their dampers on the modes up to 16 times the bound).
 - stability-equ, stability-non: the threshold above of those models.
 - modal-non: the modal analysis above of the nonviscous model.
+- level1-equ, level1-non: Level I above of those models, with Level II (`machine`: a 2 MW stage
+  at the first disk and 5e5 N/m more at the second); the log decrement at zero cross-coupling.
+- run-up-non: the run-up above of the nonviscous model.
+- report-all: the report above comparing the default four models.
 """
 
 import argparse
@@ -144,6 +147,23 @@ def requests(rotor, n):
         ("modal-non", "/v1/modal",
          {"rotor": rotor, "damping": {"model": "nonviscous"}, "speed": 500, "max_frequency": 1500},
          lambda o: o["natural_frequencies"][0]),
+    ] + [
+        (f"level1-{m[:3]}", "/v1/level1",
+         {"rotor": rotor, "damping": {"model": m}, "speed": 600,
+          "cross_coupling": {"start": 0, "stop": 2e4, "count": 11},
+          "machine": {"stages": [{"node": first, "power": 2e6, "diameter": 0.3, "width": 0.02}],
+                      "additional_cross_coupling": [{"node": n[5], "q": 5e5}]}},
+         lambda o: o["log_decrement_0"])
+        for m in ("equivalent", "nonviscous")
+    ] + [
+        ("run-up-non", "/v1/time-response",
+         {"rotor": rotor, "damping": {"model": "nonviscous"}, "speed_profile": [[0, 0], [3, 600]],
+          "unbalances": [{"node": first, "amount": 1e-4, "phase": 0}], "duration": 3,
+          "output_interval": 0.002, "nodes": [first]},
+         lambda o: peak(o["nodes"][0]["x"], o["nodes"][0]["y"])),
+        ("report-all", "/v1/report",
+         {"rotor": rotor, "damping": h, "operating_range": {"min": 250, "max": 350}},
+         lambda o: o["campbell"]["critical_speeds"][0]),
     ]
 
 

@@ -11,6 +11,7 @@ use super::AnalysisError;
 use super::large;
 use super::poles::{PoleSet, poles_at, rotor_set};
 use super::refine::{Full, nearest_pole};
+use crate::damping::dampers::ModalDampers;
 use crate::damping::{DampedModel, DampingError};
 use crate::linalg::{LinalgError, c64};
 use crate::model::damping::DampingModel;
@@ -64,16 +65,35 @@ pub fn modal_bounded(
 }
 
 /// The poles of a rotor held sparse in the box `|Re s|, |Im s| <= bound` at `speed`, and its
-/// natural frequencies up to `bound` (module docs). The viscous and hysteretic models only.
+/// natural frequencies up to `bound` (module docs); the equivalent and nonviscous models with
+/// their dampers up to 16 times `bound` (`damping::dampers`).
 pub fn modal_large(
     system: &RotorSystem,
     damping: &DampingModel,
     speed: f64,
     bound: f64,
 ) -> Result<ModalResult, AnalysisError> {
-    let radius = std::f64::consts::SQRT_2 * bound;
     let dampers = large::dampers(system, damping, bound)?;
-    let dampers = dampers.as_ref();
+    let poles = large_poles(system, damping, dampers.as_ref(), speed, bound)?;
+    let basis = large::lowest(system, 1, |_| bound)?;
+    Ok(ModalResult {
+        poles,
+        natural_frequencies: basis.omega.into_iter().filter(|&w| w <= bound).collect(),
+        states: 2 * large::full_size(system),
+        dofs: system.dofs.clone(),
+    })
+}
+
+/// [`modal_large`]'s poles alone, under `dampers` found once for the systems that share them
+/// (API 617's cross-coupling changes no damper: Level II's configurations).
+pub fn large_poles(
+    system: &RotorSystem,
+    damping: &DampingModel,
+    dampers: Option<&ModalDampers>,
+    speed: f64,
+    bound: f64,
+) -> Result<PoleSet, AnalysisError> {
+    let radius = std::f64::consts::SQRT_2 * bound;
     let pairs =
         large::full_modes(system, damping, dampers, speed, radius).map_err(|e| match e {
             AnalysisError::Linalg(LinalgError::NoConvergence) => {
@@ -100,12 +120,5 @@ pub fn modal_large(
         .into_iter()
         .filter(|(s, _)| in_box(*s, bound))
         .collect();
-    let doubled = system.layout() == Layout::Doubled;
-    let basis = large::lowest(system, 1, |_| bound)?;
-    Ok(ModalResult {
-        poles: rotor_set(speed, pairs, doubled),
-        natural_frequencies: basis.omega.into_iter().filter(|&w| w <= bound).collect(),
-        states: 2 * large::full_size(system),
-        dofs: system.dofs.clone(),
-    })
+    Ok(rotor_set(speed, pairs, system.layout() == Layout::Doubled))
 }

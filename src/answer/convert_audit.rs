@@ -148,6 +148,8 @@ pub fn level1_reduction(
         checked_cross_coupling: d.checked_q,
         max_relative_error: d.max_relative_error,
         full_model: super::convert::storage(d.sparse),
+        damped_modes: d.dampers.map(|(m, _)| m),
+        damped_band: d.dampers.map(|(_, b)| b),
     }
 }
 

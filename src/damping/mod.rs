@@ -178,8 +178,28 @@ impl DampedModel {
         dampers: &dampers::ModalDampers,
         phi: &RMat,
     ) -> Result<Self, DampingError> {
-        let given = dampers.projected(full, phi, &realization_speeds(system));
-        Self::build_with(system, model, Some(&given))
+        Self::with_projection(system, model, &Self::projection(system, full, dampers, phi))
+    }
+
+    /// The projection [`DampedModel::projected`] builds `system` with, computed once for the
+    /// systems that differ from it only by supports without loss or symmetric stiffness (API
+    /// 617's cross-coupling, Level I): their dampers are the same.
+    pub fn projection(
+        system: &RotorSystem,
+        full: &RotorSystem,
+        dampers: &dampers::ModalDampers,
+        phi: &RMat,
+    ) -> dampers::Projected {
+        dampers.projected(full, phi, &realization_speeds(system))
+    }
+
+    /// [`DampedModel::projected`] from its [`DampedModel::projection`].
+    pub fn with_projection(
+        system: &RotorSystem,
+        model: &DampingModel,
+        given: &dampers::Projected,
+    ) -> Result<Self, DampingError> {
+        Self::build_with(system, model, Some(given))
     }
 
     fn build_with(

@@ -107,7 +107,7 @@ pub const SETTINGS: &[Setting] = &[
     Setting {
         var: "WHIRL_MAX_SPARSE_DOFS",
         default: "200000",
-        meaning: "most complex degrees of freedom of a rotor held sparse: a beam rotor past 600 coordinates (no Guyan reduction) in a bounded Campbell diagram, modal analysis and stability threshold (`max_frequency`), the unbalance and frequency responses, Level I and II and the report of the viscous or hysteretic model, and the time responses of the viscous model (on a checked modal reduction), the static analysis of any beam rotor and the critical speed map (at most 100 modes); the memory budget bounds it too (about 11 kB per coordinate for the Campbell, 4 kB for the statics and for each harmonic solve running)",
+        meaning: "most complex degrees of freedom of a rotor held sparse: a beam rotor past 600 coordinates (no Guyan reduction) in a bounded Campbell diagram, modal analysis and stability threshold (`max_frequency`), the unbalance and frequency responses, Level I and II, the report and the time responses (on a checked modal reduction) under every damping model (the equivalent and nonviscous models with their dampers on the lowest modes), the static analysis of any beam rotor and the critical speed map (at most 100 modes); the memory budget bounds it too (about 11 kB per coordinate for the Campbell, 4 kB for the statics and for each harmonic solve running)",
     },
     Setting {
         var: "WHIRL_MAX_STATES",

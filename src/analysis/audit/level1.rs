@@ -15,9 +15,10 @@
 
 use crate::analysis::AnalysisError;
 use crate::analysis::control::Control;
-use crate::analysis::modal::modal_large;
+use crate::analysis::modal::large_poles;
 use crate::analysis::poles::{Pole, Whirl, overdamped, poles_at};
-use crate::damping::DampedModel;
+use crate::damping::dampers::{ModalDampers, Projected};
+use crate::damping::{DampedModel, DampingError};
 use crate::linalg::{self, c64};
 use crate::model::damping::DampingModel;
 use crate::model::supports::{Coefficients, GeneralSupport, Law, Matrix2};
@@ -138,8 +139,14 @@ pub struct FirstForward<'a> {
     at: Vec<(Placement, usize, f64)>,
     reference: Option<Pole>,
     /// Held sparse: the candidates are the full model's poles in the box `|Re s|, |Im s| <=`
-    /// this ([`modal_large`]); `None`: every pole of the dense model.
+    /// this ([`large_poles`]); `None`: every pole of the dense model.
     bound: Option<f64>,
+    /// A reduction of a rotor held sparse: its equivalent or nonviscous dampers, those of the
+    /// full rotor projected on the basis (the same at every q: the cross-coupling has no loss
+    /// and no symmetric stiffness), not rebuilt on the reduced rotor's modes.
+    given: Option<&'a Projected>,
+    /// Held sparse: the equivalent or nonviscous model's dampers, found once for every q.
+    dampers: Option<&'a ModalDampers>,
 }
 
 impl<'a> FirstForward<'a> {
@@ -164,23 +171,37 @@ impl<'a> FirstForward<'a> {
         speed: f64,
         at: Vec<(Placement, usize, f64)>,
     ) -> Result<Self, AnalysisError> {
-        Self::bounded(system, damping, speed, at, None)
+        Self::bounded(system, damping, speed, at, (None, None), None)
+    }
+
+    /// [`FirstForward::placed`] on a reduction carrying the full rotor's dampers projected
+    /// (`given`, [`DampedModel::projection`]).
+    pub fn projected(
+        system: &'a RotorSystem,
+        damping: &'a DampingModel,
+        speed: f64,
+        at: Vec<(Placement, usize, f64)>,
+        given: Option<&'a Projected>,
+    ) -> Result<Self, AnalysisError> {
+        Self::bounded(system, damping, speed, at, (None, None), given)
     }
 
     /// [`FirstForward::new`] of a rotor held sparse: its candidates the full model's poles in
-    /// the box `|Re s|, |Im s| <= bound`, by sparse factors.
+    /// the box `|Re s|, |Im s| <= bound`, by sparse factors, under the equivalent or nonviscous
+    /// model's `dampers` (those of `system` without the cross-coupling).
     pub fn held(
         system: &'a RotorSystem,
         damping: &'a DampingModel,
         speed: f64,
         at: &Placing,
         bound: f64,
+        dampers: Option<&'a ModalDampers>,
     ) -> Result<Self, AnalysisError> {
         let at = at
             .iter()
             .map(|&(dof, w)| (Placement::Dof(dof), system.dofs[dof].node, w))
             .collect();
-        Self::bounded(system, damping, speed, at, Some(bound))
+        Self::bounded(system, damping, speed, at, (Some(bound), dampers), None)
     }
 
     fn bounded(
@@ -188,7 +209,8 @@ impl<'a> FirstForward<'a> {
         damping: &'a DampingModel,
         speed: f64,
         at: Vec<(Placement, usize, f64)>,
-        bound: Option<f64>,
+        (bound, dampers): (Option<f64>, Option<&'a ModalDampers>),
+        given: Option<&'a Projected>,
     ) -> Result<Self, AnalysisError> {
         let mut first = Self {
             system,
@@ -197,12 +219,19 @@ impl<'a> FirstForward<'a> {
             at,
             reference: None,
             bound,
+            given,
+            dampers,
         };
-        first.reference = first
+        first.reference = first.reference_at_rest()?;
+        Ok(first)
+    }
+
+    /// The first forward pole without cross-coupling.
+    fn reference_at_rest(&self) -> Result<Option<Pole>, AnalysisError> {
+        Ok(self
             .candidates(0.0)?
             .into_iter()
-            .min_by(|a, b| a.frequency().total_cmp(&b.frequency()));
-        Ok(first)
+            .min_by(|a, b| a.frequency().total_cmp(&b.frequency())))
     }
 
     /// `|s|` of the first forward pole without cross-coupling.
@@ -242,14 +271,26 @@ impl<'a> FirstForward<'a> {
     fn candidates(&self, q: f64) -> Result<Vec<Pole>, AnalysisError> {
         let s = coupled(self.system, &self.at, q);
         let set = match self.bound {
-            Some(bound) => modal_large(&s, self.damping, self.speed, bound)?.poles,
-            None => poles_at(&DampedModel::build(&s, self.damping)?, self.speed)?,
+            Some(bound) => large_poles(&s, self.damping, self.dampers, self.speed, bound)?,
+            None => poles_at(&built(&s, self.damping, self.given)?, self.speed)?,
         };
         Ok(set
             .rotor
             .into_iter()
             .filter(|p| p.whirl == Whirl::Forward && p.oscillates() && !overdamped(p.s))
             .collect())
+    }
+}
+
+/// The damping model of `system`: built on its own modes, or with the `given` projection.
+pub fn built(
+    system: &RotorSystem,
+    damping: &DampingModel,
+    given: Option<&Projected>,
+) -> Result<DampedModel, DampingError> {
+    match given {
+        Some(g) => DampedModel::with_projection(system, damping, g),
+        None => DampedModel::build(system, damping),
     }
 }
 

@@ -20,14 +20,20 @@
 //! size is formed: the modes by Lanczos, the reduction and both checks through sparse factors
 //! of `Z(s)` ([`large::reduce`], [`large::band_error`]). On the cross-coupled 113-element rotor
 //! of `benches/forced_ross.py` the dense full model's two builds and checks took 185 of 245 ms.
+//! Nor for the equivalent and nonviscous models of a rotor held sparse: their dampers on the
+//! full rotor's lowest modes (`damping::dampers`), projected on the basis for the reduced
+//! model at every `q` (the cross-coupling changes no damper) and in the full model's check.
 //!
 //! [`reduction::reduce`]: crate::analysis::reduction::reduce
 
-use super::level1::{self, FirstForward, Level1, Placing, auto_range_of, coupled, level1_of};
+use super::level1::{
+    self, FirstForward, Level1, Placing, auto_range_of, built, coupled, level1_of,
+};
 use crate::analysis::AnalysisError;
 use crate::analysis::control::Control;
 use crate::analysis::large;
 use crate::analysis::reduction::{self, Criterion, TOLERANCE};
+use crate::damping::dampers::ModalDampers;
 use crate::damping::{DampedModel, DampingError};
 use crate::fem::modal::ModalBasis;
 use crate::model::damping::DampingModel;
@@ -58,6 +64,9 @@ pub struct Level1Reduction {
     pub max_relative_error: f64,
     /// Whether the full model was held sparse.
     pub sparse: bool,
+    /// The equivalent or nonviscous model held sparse: `(modes damped, the highest's
+    /// frequency)`.
+    pub dampers: Option<(usize, f64)>,
 }
 
 /// A Level I screen: the grid (given, or [`level1::auto_range`]'s of `count` points), its
@@ -127,15 +136,26 @@ pub fn level1_reduced(
         .collect();
     // The viscous and hysteretic models reduce and check through sparse factors (no dense
     // matrix of the rotor's size), their lowest modes and the band's first bound in one Lanczos
-    // run; the models built on a modal basis, and a rotor that run refuses (the dense path
+    // run; so do the equivalent and nonviscous models of a rotor held sparse, their dampers on
+    // the full rotor's lowest modes ([`large::dampers`], the reduction carrying them
+    // projected); the other models, and a small rotor the Lanczos run refuses (the dense path
     // names what is wrong), on the dense full model.
     let band = |omega: &[f64]| omega.get(1).copied().unwrap_or(omega[0]).max(speed.abs());
-    let sparse = large::sparse_applies(system, damping)
-        .then(|| large::lowest(system, 2, band).ok())
-        .flatten();
-    let full = match sparse {
-        Some(basis) => Full::Sparse(basis),
-        None => Full::Dense(DampedModel::build(system, damping)?),
+    let damped = held
+        && matches!(
+            damping,
+            DampingModel::Equivalent { .. } | DampingModel::Nonviscous(_)
+        );
+    let full = if held {
+        Full::Sparse(large::lowest(system, 2, band)?)
+    } else {
+        let sparse = large::sparse_applies(system, damping)
+            .then(|| large::lowest(system, 2, band).ok())
+            .flatten();
+        match sparse {
+            Some(basis) => Full::Sparse(basis),
+            None => Full::Dense(DampedModel::build(system, damping)?),
+        }
     };
     // The band: from the second mode at rest (the first forward mode is rarely above it),
     // widened to twice the first forward mode's modulus if it is not.
@@ -143,8 +163,14 @@ pub fn level1_reduced(
         Full::Sparse(basis) => &basis.omega,
         Full::Dense(f) => &f.basis.omega,
     });
+    // The dampers up to 16 times the band, found again when it widens.
+    let mut dampers: Option<(f64, ModalDampers)> = None;
     for _ in 0..4 {
         control.check()?;
+        if damped && dampers.as_ref().is_none_or(|(b, _)| *b != bound) {
+            dampers = large::dampers(system, damping, bound)?.map(|d| (bound, d));
+        }
+        let dampers = dampers.as_ref().map(|(_, d)| d);
         let criterion = Criterion::Relative(TOLERANCE);
         let red = match &full {
             Full::Dense(f) => {
@@ -159,7 +185,7 @@ pub fn level1_reduced(
                 large::reduce(
                     system,
                     damping,
-                    None,
+                    dampers,
                     basis.clone(),
                     &check,
                     &dofs,
@@ -179,7 +205,10 @@ pub fn level1_reduced(
                 (Placement::Shape(row), system.dofs[d].node, w)
             })
             .collect();
-        let first = FirstForward::placed(&red.system, damping, speed, placed.clone())?;
+        let given =
+            dampers.map(|d| DampedModel::projection(&red.system, system, d, &red.basis.phi));
+        let first =
+            FirstForward::projected(&red.system, damping, speed, placed.clone(), given.as_ref())?;
         let modulus = first.reference_modulus();
         if let Some(m) = modulus
             && 1.5 * m > bound
@@ -192,13 +221,13 @@ pub fn level1_reduced(
         // cross-coupling solved, where it has moved the poles furthest from where the
         // reduction was checked. Eigenvalues only: one full solve, no shapes.
         let q = result.q0.unwrap_or(qs.iter().copied().fold(0.0, f64::max));
-        let approx = DampedModel::build(&coupled(&red.system, &placed, q), damping)?;
+        let approx = built(&coupled(&red.system, &placed, q), damping, given.as_ref())?;
         let exact = coupled(system, &whole_at, q);
         let error = match &full {
             Full::Dense(_) => {
                 reduction::band_error(&DampedModel::build(&exact, damping)?, &approx, speed, bound)?
             }
-            Full::Sparse(_) => large::band_error(&exact, damping, None, &approx, speed, bound)?,
+            Full::Sparse(_) => large::band_error(&exact, damping, dampers, &approx, speed, bound)?,
         };
         if error > CHECK {
             break;
@@ -215,6 +244,7 @@ pub fn level1_reduced(
                 checked_q: q,
                 max_relative_error: error,
                 sparse: matches!(full, Full::Sparse(_)),
+                dampers: red.info.dampers,
             }),
         });
     }

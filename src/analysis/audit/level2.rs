@@ -10,6 +10,8 @@
 
 use super::level1::{FirstForward, ForwardPole, Placing};
 use crate::analysis::AnalysisError;
+use crate::analysis::large;
+use crate::damping::dampers::ModalDampers;
 use crate::model::damping::DampingModel;
 use crate::system::RotorSystem;
 
@@ -47,8 +49,7 @@ impl Source {
 
 /// Level II at `speed`: the first forward mode under each configuration that applies. `stages`
 /// holds each stage's translation and share of `qa`; `extra` each further cross-coupling's
-/// translation and q, N/m. A rotor `held` sparse (the viscous and hysteretic models past 600
-/// coordinates) is solved through sparse factors, each configuration's candidates its full
+/// translation and q, N/m. A rotor `held` sparse (past 600 coordinates) is solved through sparse factors, each configuration's candidates its full
 /// model's poles in a box of [`HELD_BOX`] times its lowest undamped natural frequency.
 pub fn level2(
     system: &RotorSystem,
@@ -66,39 +67,55 @@ pub fn level2(
         }
         false => None,
     };
+    let mut bare = system.clone();
+    bare.supports.retain(|p| !p.support.seal);
+    let seals = bare.supports.len() < system.supports.len();
+    // The equivalent and nonviscous models' dampers, once with the seals and once without
+    // (the cross-coupling changes none).
+    let dampers_of = |s: &RotorSystem| match bound {
+        Some(b) => large::dampers(s, damping, b),
+        None => Ok(None),
+    };
+    let bare_dampers = dampers_of(&bare)?;
+    let sealed_dampers = match seals {
+        true => dampers_of(system)?,
+        false => None,
+    };
+    let (bare_d, all_d) = match seals {
+        true => (bare_dampers.as_ref(), sealed_dampers.as_ref()),
+        false => (bare_dampers.as_ref(), bare_dampers.as_ref()),
+    };
     fn follow<'a>(
         s: &'a RotorSystem,
         damping: &'a DampingModel,
         speed: f64,
         at: &Placing,
-        bound: Option<f64>,
+        held: Option<(f64, Option<&'a ModalDampers>)>,
     ) -> Result<FirstForward<'a>, AnalysisError> {
-        match bound {
-            Some(b) => FirstForward::held(s, damping, speed, at, b),
+        match held {
+            Some((b, d)) => FirstForward::held(s, damping, speed, at, b, d),
             None => FirstForward::new(s, damping, speed, at),
         }
     }
-    let first = |s, at| follow(s, damping, speed, at, bound);
-    let mut bare = system.clone();
-    bare.supports.retain(|p| !p.support.seal);
-    let seals = bare.supports.len() < system.supports.len();
+    let bare_first = |at| follow(&bare, damping, speed, at, bound.map(|b| (b, bare_d)));
+    let first = |at| follow(system, damping, speed, at, bound.map(|b| (b, all_d)));
     // Shares times q_A: the absolute cross-coupling of each stage, applied with q = 1.
     let stage_q: Vec<(usize, f64)> = stages.iter().map(|&(d, w)| (d, w * qa)).collect();
-    let mut out = vec![(Source::Base, first(&bare, &[])?.base())];
+    let mut out = vec![(Source::Base, bare_first(&[])?.base())];
     if seals {
-        out.push((Source::Seals, first(system, &[])?.base()));
+        out.push((Source::Seals, first(&[])?.base()));
     }
     if qa > 0.0 && !stage_q.is_empty() {
-        out.push((Source::Stages, first(&bare, &stage_q)?.at(1.0)?));
+        out.push((Source::Stages, bare_first(&stage_q)?.at(1.0)?));
     }
     if !extra.is_empty() {
-        out.push((Source::Additional, first(&bare, extra)?.at(1.0)?));
+        out.push((Source::Additional, bare_first(extra)?.at(1.0)?));
     }
     let all: Vec<(usize, f64)> = stage_q.iter().chain(extra).copied().collect();
     let together = if all.is_empty() {
-        first(system, &[])?.base()
+        first(&[])?.base()
     } else {
-        first(system, &all)?.at(1.0)?
+        first(&all)?.at(1.0)?
     };
     out.push((Source::All, together));
     Ok(out)

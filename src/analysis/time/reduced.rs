@@ -36,8 +36,9 @@ use crate::model::damping::DampingModel;
 use crate::system::RotorSystem;
 
 /// The state entries of a reduced model `[v, x, y]` that belong to Ritz modes at most `cutoff`
-/// (velocities and displacements; branches by the mode they serve).
-fn slow_entries(model: &DampedModel, omega: &[f64], cutoff: f64) -> Vec<bool> {
+/// (velocities and displacements; branches by the mode they serve, every branch of dampers
+/// `projected` from the full rotor's modes, which are not the Ritz modes).
+fn slow_entries(model: &DampedModel, omega: &[f64], cutoff: f64, projected: bool) -> Vec<bool> {
     let ModelKind::Linear(state) = &model.kind else {
         return vec![true; model.states()];
     };
@@ -46,7 +47,7 @@ fn slow_entries(model: &DampedModel, omega: &[f64], cutoff: f64) -> Vec<bool> {
     let m = omega.len().max(1);
     let slow = |k: usize| omega.get(k % m).is_none_or(|&w| w <= cutoff);
     let mut out: Vec<bool> = (0..2 * n).map(|i| slow(i % n)).collect();
-    out.extend(state.branches().mode.iter().map(|&k| slow(k)));
+    out.extend(state.branches().mode.iter().map(|&k| projected || slow(k)));
     out
 }
 
@@ -72,8 +73,9 @@ pub fn solve(
     Ok((time_response(system, full, spec, false, control)?, None))
 }
 
-/// [`solve`]'s reduction without the dense full model: for the viscous and hysteretic models,
-/// the lowest modes by Lanczos and the check through sparse factors (as [`large::reduce`]), so
+/// [`solve`]'s reduction without the dense full model: for the viscous and hysteretic models
+/// (and the equivalent and nonviscous models of a rotor `held` sparse, their dampers on the
+/// full rotor's lowest modes and projected on the reduction), the lowest modes by Lanczos and the check through sparse factors (as [`large::reduce`]), so
 /// a run-up costs no dense matrix of the rotor's size (on a 113-element cross-coupled rotor the
 /// dense full model's build and check took 84 of 103 ms). The check's full-model poles are
 /// found on a second thread while the first candidate is integrated: on `benches/
@@ -95,7 +97,14 @@ pub fn solve_sparse(
     control: &Control,
 ) -> Result<Option<(TimeResult, Reduction)>, TimeError> {
     let varying = spec.speed.constant().is_none();
-    if !(allow && large::sparse_applies(system, damping) && (varying || held)) {
+    // The equivalent and nonviscous models of a rotor held sparse too: their dampers on the
+    // full rotor's lowest modes, the reduction carrying them projected.
+    let damped = held
+        && matches!(
+            damping,
+            DampingModel::Equivalent { .. } | DampingModel::Nonviscous(_)
+        );
+    if !(allow && (large::sparse_applies(system, damping) || damped) && (varying || held)) {
         return Ok(None);
     }
     // The lowest modes and the band they set, in one Lanczos run. A rotor it refuses is
@@ -110,8 +119,12 @@ pub fn solve_sparse(
         bound,
         criterion: Criterion::Response(RESPONSE_TOLERANCE),
     };
+    let Ok(dampers) = large::dampers(system, damping, bound) else {
+        return Ok(None);
+    };
+    let dampers = dampers.as_ref();
     let Ok(mut widening) =
-        large::Widening::new(system, damping, None, basis, &check, &loads, usize::MAX)
+        large::Widening::new(system, damping, dampers, basis, &check, &loads, usize::MAX)
     else {
         return Ok(None);
     };
@@ -125,7 +138,7 @@ pub fn solve_sparse(
     let check = &check;
     let (exact, first) = std::thread::scope(|scope| {
         let helper = scope.spawn(move || {
-            let exact = large::exact_poles(system, damping, None, check)?;
+            let exact = large::exact_poles(system, damping, dampers, check)?;
             let approx = rx
                 .recv()
                 .ok()
@@ -193,7 +206,12 @@ fn integrate(
         physical: system,
         solved: &r.system,
         basis: Some(&r.basis.phi),
-        slow: Some(slow_entries(&r.model, &r.basis.omega, 2.0 * bound)),
+        slow: Some(slow_entries(
+            &r.model,
+            &r.basis.omega,
+            2.0 * bound,
+            r.info.dampers.is_some(),
+        )),
     };
     // At a constant speed (a rotor held sparse) the reduced model is solved exactly, as a
     // small rotor's full model is.

@@ -333,10 +333,19 @@ pub struct Level1ReductionInfo {
     /// model is solved).
     pub max_relative_error: f64,
     /// How the full model was held for the reduction and its check: `dense`, or `sparse`
-    /// (the viscous and hysteretic models of 100 states or more: Lanczos modes, sparse
-    /// factors, no dense matrix of the rotor's size).
+    /// (the viscous and hysteretic models of 100 states or more, and every model of a rotor
+    /// past WHIRL_MAX_DOFS: Lanczos modes, sparse factors, no dense matrix of the rotor's
+    /// size).
     #[serde(default)]
     pub full_model: super::Storage,
+    /// The equivalent or nonviscous model of a rotor held sparse: its dampers are on the
+    /// undamped modes up to 16 times the band checked (or the request's `modes`), this many
+    /// (x/y modes each, on supports that are not isotropic; the dense models damp every mode).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub damped_modes: Option<usize>,
+    /// Natural frequency of the highest of those modes, rad/s.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub damped_band: Option<f64>,
 }
 
 /// Answer of `POST /v1/level1`.

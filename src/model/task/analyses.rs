@@ -13,7 +13,7 @@ impl ModalRequest {
         // Only a bounded modal analysis holds a large rotor sparse: every pole of it is not
         // asked for.
         let (model, sparse) =
-            Model::parse_held_damped(bound.is_some(), &self.rotor, &self.damping, limits, bad)?;
+            Model::parse_held(bound.is_some(), &self.rotor, &self.damping, limits, bad)?;
         let size = model.size();
         let n = size.dofs as u64;
         let cost = match sparse {
@@ -70,8 +70,7 @@ impl SweepRequest {
             bad.push("modes", format!("must be an integer >= 1 (got {m})"));
         }
         let grid = speeds(&self.speeds, limits, &mut bad);
-        let (model, sparse) =
-            Model::parse_held_damped(hold, &self.rotor, &self.damping, limits, bad)?;
+        let (model, sparse) = Model::parse_held(hold, &self.rotor, &self.damping, limits, bad)?;
         Ok((model, grid.expect("validated"), sparse))
     }
 
@@ -95,8 +94,13 @@ impl SweepRequest {
             ));
         }
         // At most 2n branches (`modes` of them if given); with `max_frequency` fewer, known
-        // only after the solve. Two values per branch and speed.
-        let branches = modes.map_or(rotor_poles, |m| m as u64);
+        // only after the solve, and held sparse at most the reduced model's states. Two values
+        // per branch and speed.
+        let most = match sparse {
+            true => rotor_poles.min(sparse_states(limits) as u64),
+            false => rotor_poles,
+        };
+        let branches = modes.map_or(most, |m| m as u64);
         let values = count as u64 * (1 + 2 * branches);
         let cost = match sparse {
             true => sparse_sweep_cost(size, model.rotor.doubled(), count, limits, values)

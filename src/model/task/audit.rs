@@ -388,6 +388,7 @@ impl Level1Request {
         let solves = qs.len().max(AUTO_COUNT) + 60;
         let model_doubled = model.rotor.doubled();
         let values = 3 * qs.len().max(AUTO_COUNT) as u64 + 32;
+        let damper_bytes = model.damper_bytes(limits);
         Ok(Task {
             output_unit: self.output_unit.unwrap_or_default(),
             warnings: model.warnings(speed, speed),
@@ -403,7 +404,8 @@ impl Level1Request {
                 sparse,
             },
             cost: match sparse {
-                true => sparse_sweep_cost(size, model_doubled, solves, limits, values),
+                true => sparse_sweep_cost(size, model_doubled, solves, limits, values)
+                    .plus_bytes(damper_bytes),
                 false => sweep_cost(size, 1, limits, false, values)
                     .with_work(size.eigen_work() * solves as f64),
             },
@@ -468,8 +470,7 @@ impl FrequencyResponseRequest {
                 "must be > 0 (the response to a static load is /v1/static)",
             );
         }
-        let (model, sparse) =
-            Model::parse_held_damped(true, &self.rotor, &self.damping, limits, bad)?;
+        let (model, sparse) = Model::parse_held(true, &self.rotor, &self.damping, limits, bad)?;
         let mut bad = Invalid::default();
         let nodes = model.rotor.node_count();
         let input = node_index(&mut bad, "input.node".into(), self.input.node, nodes);

@@ -5,11 +5,12 @@
 use super::*;
 
 impl Model {
-    /// [`Model::parse`], the rotor held sparse where `allow` and it may be: the viscous and
-    /// hysteretic models (the rotor's own second-order system) of a beam rotor without Guyan
-    /// reduction past [`SPARSE_FROM`] coordinates, whose size is then bounded by
-    /// `max_sparse_dofs` and the memory estimate; any other is parsed against the dense limits.
-    /// `(model, held sparse)`.
+    /// [`Model::parse`], the rotor held sparse where `allow` and it may be: a beam rotor
+    /// without Guyan reduction past [`SPARSE_FROM`] coordinates, whose size is then bounded by
+    /// `max_sparse_dofs` and the memory estimate, under every damping model (the equivalent
+    /// and nonviscous models with their dampers on the lowest modes, `damping::dampers`,
+    /// `modes` checked against [`MAX_DAMPED_MODES`]); any other is parsed against the dense
+    /// limits. `(model, held sparse)`.
     pub fn parse_held(
         allow: bool,
         rotor: &RotorInput,
@@ -17,35 +18,7 @@ impl Model {
         limits: &Limits,
         bad: Invalid,
     ) -> Result<(Self, bool), Invalid> {
-        Self::parse_held_as(allow, false, rotor, damping, limits, bad)
-    }
-
-    /// [`Model::parse_held`] for the analyses that also hold the equivalent and nonviscous
-    /// models sparse (their dampers on the lowest modes, `damping::dampers`): the bounded
-    /// Campbell diagram, stability threshold and modal analysis.
-    pub fn parse_held_damped(
-        allow: bool,
-        rotor: &RotorInput,
-        damping: &DampingInput,
-        limits: &Limits,
-        bad: Invalid,
-    ) -> Result<(Self, bool), Invalid> {
-        Self::parse_held_as(allow, true, rotor, damping, limits, bad)
-    }
-
-    fn parse_held_as(
-        allow: bool,
-        damped: bool,
-        rotor: &RotorInput,
-        damping: &DampingInput,
-        limits: &Limits,
-        bad: Invalid,
-    ) -> Result<(Self, bool), Invalid> {
-        let own = matches!(
-            damping,
-            DampingInput::Viscous(_) | DampingInput::Hysteretic(_)
-        );
-        if allow && (own || damped) {
+        if allow {
             let relaxed = Limits {
                 max_states: usize::MAX,
                 ..limits.held_sparse()
@@ -100,7 +73,8 @@ impl Model {
                     format!(
                         "a rotor of this size ({} coordinates) is held sparse, its dampers on \
                          at most {limit} modes (got {m}); without `modes`, every mode up to \
-                         16 times `max_frequency`",
+                         16 times the analysis's band (`max_frequency`, the highest speed or \
+                         frequency)",
                         self.size().dofs
                     ),
                 );

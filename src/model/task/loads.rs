@@ -201,6 +201,7 @@ impl TimeResponseRequest {
                     + 16 * r * (loads + reported as u64 + 16)
                     + 4 * r * r;
                 sparse_time_cost(size, model.rotor.doubled(), limits, extra, values)
+                    .plus_bytes(model.damper_bytes(limits))
             }
             false => Cost::new(size, 2, 0, extra, values).with_work(work),
         };
@@ -226,8 +227,7 @@ impl UnbalanceResponseRequest {
         if self.unbalances.is_empty() {
             bad.push("unbalances", "needs at least one unbalance");
         }
-        let (model, sparse) =
-            Model::parse_held_damped(true, &self.rotor, &self.damping, limits, bad)?;
+        let (model, sparse) = Model::parse_held(true, &self.rotor, &self.damping, limits, bad)?;
         let mut bad = Invalid::default();
         let nodes = model.rotor.node_count();
         let mut unbalances = vec![];

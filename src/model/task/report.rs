@@ -11,7 +11,7 @@ use crate::model::api::{
 use crate::model::error::Invalid;
 use crate::model::error::positive;
 use crate::model::limits::{Cost, Limits};
-use crate::model::rotor::{BeamRotor, Rotor};
+use crate::model::rotor::BeamRotor;
 use crate::model::speeds::operating_range;
 
 /// The tasks a report runs.
@@ -94,41 +94,12 @@ impl ReportRequest {
         ]
     }
 
-    /// Every model of the report is one a rotor held sparse has (viscous or hysteretic), or
-    /// an error naming the first that is not.
-    fn sparse_models(&self) -> Result<(), Invalid> {
-        let sparse =
-            |d: &DampingInput| matches!(d, DampingInput::Viscous(_) | DampingInput::Hysteretic(_));
-        let why = "a rotor past WHIRL_MAX_DOFS is held sparse, where every part of the report \
-                   solves only the viscous and hysteretic models (the equivalent and nonviscous \
-                   models are held sparse in /v1/campbell, /v1/modal and /v1/stability with \
-                   max_frequency and in the harmonic responses, not yet in Level I)";
-        if !sparse(&self.damping) {
-            return Err(Invalid::one("damping", why));
-        }
-        match self
-            .models
-            .as_ref()
-            .and_then(|m| m.iter().position(|d| !sparse(d)))
-        {
-            Some(i) => Err(Invalid::one(format!("models[{i}]"), why)),
-            None if self.models.is_none() => Err(Invalid::one(
-                "models",
-                format!("{why}: give `models` from those (the default compares all four)"),
-            )),
-            None => Ok(()),
-        }
-    }
-
     pub fn parse(&self, limits: &Limits) -> Result<Task, Invalid> {
         let mut bad = Invalid::default();
         let range = operating_range(&self.operating_range, "operating_range", &mut bad);
         // A rotor past the dense limits is held sparse by every part of the report (each part's
-        // parse decides), which only the viscous and hysteretic models allow.
+        // parse decides), under every damping model.
         let rotor = beam(&self.rotor, &limits.held_sparse(), bad)?;
-        if Rotor::parse(&self.rotor, limits).is_err() {
-            self.sparse_models()?;
-        }
         let (lo, hi) = range.expect("validated");
         let speeds = self
             .speeds
