@@ -4,16 +4,13 @@
 
 mod common;
 
-use common::stepped_rotor;
 use serde_json::{Value, json};
 use whirl::analysis::audit::level1_reduced::level1_reduced;
 use whirl::analysis::control::Control;
-use whirl::analysis::time::{SpeedLaw, TimeResult, TimeSpec, reduced, time_response};
+use whirl::analysis::time::{reduced, time_response};
 use whirl::damping::DampedModel;
 use whirl::model::api::DampingInput;
 use whirl::model::damping::DampingModel;
-use whirl::model::error::Invalid;
-use whirl::model::loads::{Force, Pwl};
 
 fn damping(v: Value, n: usize) -> DampingModel {
     let d: DampingInput = serde_json::from_value(v).unwrap();
@@ -79,19 +76,6 @@ fn level1_held_sparse_is_the_dense_full_model() {
     }
 }
 
-/// The largest difference between two histories at the first output, relative to the
-/// reference's largest radial amplitude.
-fn deviation(r: &TimeResult, f: &TimeResult) -> f64 {
-    let top = f.nodes[0].1.iter().map(|z| z.norm()).fold(0.0, f64::max);
-    let worst = r.nodes[0]
-        .1
-        .iter()
-        .zip(&f.nodes[0].1)
-        .map(|(a, b)| (a - b).norm())
-        .fold(0.0, f64::max);
-    worst / top
-}
-
 /// `tests/time_large.rs`'s shock (the 150-element rotor at 700 rad/s on soft cross-coupled
 /// bearings, 604 coordinates, a 10 kN blow ramped over 11 ms at node 40) under the equivalent
 /// and nonviscous models, their 40 lowest x/y modes damped: integrated on the reduction held
@@ -100,26 +84,7 @@ fn deviation(r: &TimeResult, f: &TimeResult) -> f64 {
 /// 3.6e-5 and 3.5e-5; the viscous model 4.2e-5).
 #[test]
 fn a_shock_held_sparse_matches_the_exact_dense_model() {
-    let bearing = json!({"kxx": 4e6, "kxy": 8e5, "kyx": -1.2e6, "kyy": 7e6,
-                         "cxx": 300.0, "cxy": 40.0, "cyx": -25.0, "cyy": 500.0});
-    let system = common::assemble(stepped_rotor(150, bearing, 0.002));
-    let history = [[0.0, 0.0], [0.011, 1e4], [0.022, 0.0]];
-    let history = Pwl::parse(&history, "history", true, &mut Invalid::default()).unwrap();
-    let spec = TimeSpec {
-        speed: SpeedLaw::Constant(700.0),
-        forces: vec![Force {
-            node: 40,
-            direction: 0.0,
-            history,
-        }],
-        unbalances: vec![],
-        duration: 0.2,
-        output_interval: 2e-4,
-        nodes: vec![40, 100],
-        tolerance: 1e-6,
-        max_steps: 500_000,
-        reduce: true,
-    };
+    let (system, spec) = common::shock_case(&[[0.0, 0.0], [0.011, 1e4], [0.022, 0.0]]);
     let control = Control::default();
     for d in [
         json!({"model": "equivalent", "modes": 20}),
@@ -132,7 +97,7 @@ fn a_shock_held_sparse_matches_the_exact_dense_model() {
         assert!(info.sparse && info.dampers.is_some(), "{info:?}");
         let full = DampedModel::build(&system, &model).unwrap();
         let exact = time_response(&system, &full, &spec, false, &control).unwrap();
-        let dev = deviation(&r, &exact);
+        let (dev, _) = common::deviation(&r, &exact);
         eprintln!(
             "{d}: {} of {} states ({} modes, {:?} damped); {dev:.1e} of the largest amplitude",
             info.states, info.full_states, info.modes, info.dampers

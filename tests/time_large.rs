@@ -7,55 +7,22 @@
 
 mod common;
 
-use common::{floats, post_json, stepped_rotor};
+use common::post_json;
 use serde_json::{Value, json};
 use whirl::analysis::control::Control;
-use whirl::analysis::time::{SpeedLaw, TimeResult, TimeSpec, reduced, time_response};
+use whirl::analysis::time::{reduced, time_response};
 use whirl::damping::DampedModel;
 use whirl::model::api::DampingInput;
 use whirl::model::damping::DampingModel;
-use whirl::model::error::Invalid;
-use whirl::model::loads::{Force, Pwl};
-
-/// The largest difference between two histories at the first output, relative to the
-/// reference's largest radial amplitude.
-fn deviation(r: &TimeResult, f: &TimeResult) -> (f64, f64) {
-    let top = f.nodes[0].1.iter().map(|z| z.norm()).fold(0.0, f64::max);
-    let worst = r.nodes[0]
-        .1
-        .iter()
-        .zip(&f.nodes[0].1)
-        .map(|(a, b)| (a - b).norm())
-        .fold(0.0, f64::max);
-    (worst / top, top)
-}
 
 /// The 150-element stepped rotor spun at 700 rad/s on soft, lightly damped, cross-coupled
 /// anisotropic bearings (604 coordinates), viscous, struck along x at node 40 by `history`:
 /// the response on the reduction held sparse against the exact solution of the full model (its
 /// modes' closed forms, `time::exact`), relative to the largest amplitude at that node.
 fn shock(history: &[[f64; 2]]) -> f64 {
-    let bearing = json!({"kxx": 4e6, "kxy": 8e5, "kyx": -1.2e6, "kyy": 7e6,
-                         "cxx": 300.0, "cxy": 40.0, "cyx": -25.0, "cyy": 500.0});
-    let system = common::assemble(stepped_rotor(150, bearing, 0.002));
+    let (system, spec) = common::shock_case(history);
     let d: DampingInput = serde_json::from_value(json!({"model": "viscous"})).unwrap();
     let damping = DampingModel::parse(&d, None).unwrap();
-    let history = Pwl::parse(history, "history", true, &mut Invalid::default()).unwrap();
-    let spec = TimeSpec {
-        speed: SpeedLaw::Constant(700.0),
-        forces: vec![Force {
-            node: 40,
-            direction: 0.0,
-            history,
-        }],
-        unbalances: vec![],
-        duration: 0.2,
-        output_interval: 2e-4,
-        nodes: vec![40, 100],
-        tolerance: 1e-6,
-        max_steps: 500_000,
-        reduce: true,
-    };
     let control = Control::default();
     // A rotor not held sparse is solved exactly at a constant speed.
     assert!(
@@ -72,7 +39,7 @@ fn shock(history: &[[f64; 2]]) -> f64 {
     );
     let full = DampedModel::build(&system, &damping).unwrap();
     let exact = time_response(&system, &full, &spec, false, &control).unwrap();
-    let (dev, top) = deviation(&r, &exact);
+    let (dev, top) = common::deviation(&r, &exact);
     println!(
         "shock held sparse: {} of {} states ({} modes); {dev:.1e} of the largest amplitude \
          {top:.4e} m from the exact full model",
@@ -124,12 +91,7 @@ async fn train_of_1080_elements() {
             let seconds = t.elapsed().as_secs_f64();
             assert_eq!(status, 200, "{name} x{k}: {out}");
             let red = &out["reduction"];
-            let (x, y) = (floats(&out["nodes"][0]["x"]), floats(&out["nodes"][0]["y"]));
-            let peak = x
-                .iter()
-                .zip(&y)
-                .map(|(a, b)| a.hypot(*b))
-                .fold(0.0, f64::max);
+            let peak = common::radial_peak(&out);
             println!(
                 "train x{k} {name}: {seconds:.2} s, {} of {} states ({} held), peak {peak:.6e} m",
                 red["states"], red["full_states"], red["full_model"]
@@ -146,12 +108,7 @@ async fn train_of_1080_elements() {
         let (status, out) = post_json("/v1/time-response", &body).await;
         assert_eq!(status, 200, "nonviscous x{k}: {out}");
         let red = &out["reduction"];
-        let (x, y) = (floats(&out["nodes"][0]["x"]), floats(&out["nodes"][0]["y"]));
-        let peak = x
-            .iter()
-            .zip(&y)
-            .map(|(a, b)| a.hypot(*b))
-            .fold(0.0, f64::max);
+        let peak = common::radial_peak(&out);
         println!(
             "train x{k} nonviscous run-up: {:.2} s, {} of {} states ({} modes damped), peak \
              {peak:.6e} m",

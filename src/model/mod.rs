@@ -13,6 +13,7 @@ pub mod json;
 pub mod limits;
 pub mod loads;
 pub mod objects;
+pub mod pchip;
 pub mod point_masses;
 pub mod ross;
 pub mod rotor;
