@@ -58,6 +58,15 @@ impl DampingModel {
         }
     }
 
+    /// Whether the model is built on the rotor's undamped modes (the equivalent and nonviscous
+    /// models: a damper per mode).
+    pub fn on_modes(&self) -> bool {
+        matches!(
+            self,
+            DampingModel::Equivalent { .. } | DampingModel::Nonviscous(_)
+        )
+    }
+
     /// The model's name as in the API.
     pub fn name(&self) -> &'static str {
         match self {

@@ -222,16 +222,11 @@ impl<'a> FirstForward<'a> {
             given,
             dampers,
         };
-        first.reference = first.reference_at_rest()?;
-        Ok(first)
-    }
-
-    /// The first forward pole without cross-coupling.
-    fn reference_at_rest(&self) -> Result<Option<Pole>, AnalysisError> {
-        Ok(self
+        first.reference = first
             .candidates(0.0)?
             .into_iter()
-            .min_by(|a, b| a.frequency().total_cmp(&b.frequency())))
+            .min_by(|a, b| a.frequency().total_cmp(&b.frequency()));
+        Ok(first)
     }
 
     /// `|s|` of the first forward pole without cross-coupling.

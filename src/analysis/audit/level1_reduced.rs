@@ -141,11 +141,7 @@ pub fn level1_reduced(
     // projected); the other models, and a small rotor the Lanczos run refuses (the dense path
     // names what is wrong), on the dense full model.
     let band = |omega: &[f64]| omega.get(1).copied().unwrap_or(omega[0]).max(speed.abs());
-    let damped = held
-        && matches!(
-            damping,
-            DampingModel::Equivalent { .. } | DampingModel::Nonviscous(_)
-        );
+    let damped = held && damping.on_modes();
     let full = if held {
         Full::Sparse(large::lowest(system, 2, band)?)
     } else {

@@ -49,8 +49,8 @@ impl Source {
 
 /// Level II at `speed`: the first forward mode under each configuration that applies. `stages`
 /// holds each stage's translation and share of `qa`; `extra` each further cross-coupling's
-/// translation and q, N/m. A rotor `held` sparse (past 600 coordinates) is solved through sparse factors, each configuration's candidates its full
-/// model's poles in a box of [`HELD_BOX`] times its lowest undamped natural frequency.
+/// translation and q, N/m. A rotor `held` sparse (past 600 coordinates) is solved through
+/// sparse factors, each configuration's candidates its full model's poles in a box of [`HELD_BOX`] times its lowest undamped natural frequency.
 pub fn level2(
     system: &RotorSystem,
     damping: &DampingModel,
@@ -81,10 +81,8 @@ pub fn level2(
         true => dampers_of(system)?,
         false => None,
     };
-    let (bare_d, all_d) = match seals {
-        true => (bare_dampers.as_ref(), sealed_dampers.as_ref()),
-        false => (bare_dampers.as_ref(), bare_dampers.as_ref()),
-    };
+    let bare_d = bare_dampers.as_ref();
+    let all_d = sealed_dampers.as_ref().or(bare_d);
     fn follow<'a>(
         s: &'a RotorSystem,
         damping: &'a DampingModel,

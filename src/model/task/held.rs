@@ -45,11 +45,9 @@ impl Model {
 
     /// Heap of the equivalent or nonviscous model's dampers when held sparse (0 for the others).
     pub fn damper_bytes(&self, limits: &Limits) -> u64 {
-        match self.damping {
-            DampingModel::Equivalent { .. } | DampingModel::Nonviscous(_) => {
-                self.size().dofs as u64 * damper_bytes_per_coordinate(limits.threads.max(1))
-            }
-            _ => 0,
+        match self.damping.on_modes() {
+            true => self.size().dofs as u64 * damper_bytes_per_coordinate(limits.threads.max(1)),
+            false => 0,
         }
     }
 

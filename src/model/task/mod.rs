@@ -123,11 +123,7 @@ impl Model {
             if let Some(w) = held_warning(&path, s, lo, hi) {
                 out.push(w);
             }
-            let modal = matches!(
-                self.damping,
-                DampingModel::Equivalent { .. } | DampingModel::Nonviscous(_)
-            );
-            if modal && s.speeds().first().is_some_and(|&w| w > 0.0) {
+            if self.damping.on_modes() && s.speeds().first().is_some_and(|&w| w > 0.0) {
                 out.push(format!(
                     "{path}: the {} model is built on the modes of the rotor at rest, where \
                      this support's coefficients are taken as at its table's first speed",
