@@ -3,6 +3,7 @@
 
 pub mod audit;
 pub mod campbell;
+pub mod consistent;
 pub mod control;
 pub mod criticals;
 pub mod large;

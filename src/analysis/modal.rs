@@ -22,6 +22,9 @@ use rayon::prelude::*;
 #[derive(Debug, Clone)]
 pub struct ModalResult {
     pub poles: PoleSet,
+    /// On supports over whirl frequency: each rotor pole's residual at the frequency it reads
+    /// them at ([`super::consistent`]), in the order of `poles.rotor`.
+    pub consistency: Option<Consistency>,
     /// Undamped nonrotating natural frequencies, rad/s, ascending.
     pub natural_frequencies: Vec<f64>,
     /// Size of the first-order eigenproblem.
@@ -37,6 +40,7 @@ pub fn modal(
 ) -> Result<ModalResult, AnalysisError> {
     Ok(ModalResult {
         poles: poles_at(model, speed)?,
+        consistency: None,
         natural_frequencies: model.basis.omega.clone(),
         states: model.states(),
         dofs: system.dofs.clone(),
@@ -78,6 +82,7 @@ pub fn modal_large(
     let basis = large::lowest(system, 1, |_| bound)?;
     Ok(ModalResult {
         poles,
+        consistency: None,
         natural_frequencies: basis.omega.into_iter().filter(|&w| w <= bound).collect(),
         states: 2 * large::full_size(system),
         dofs: system.dofs.clone(),
@@ -121,4 +126,101 @@ pub fn large_poles(
         .filter(|(s, _)| in_box(*s, bound))
         .collect();
     Ok(rotor_set(speed, pairs, system.layout() == Layout::Doubled))
+}
+
+/// How the poles of a rotor on supports over whirl frequency were made consistent.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Consistency {
+    /// Per rotor pole, its residual ([`super::consistent`]).
+    pub residuals: Vec<f64>,
+    /// Poles of the synchronous reading with no consistent pole near them (none found, or the
+    /// steps did not settle): not reported.
+    pub lost: usize,
+    /// Poles of the synchronous reading that continued to a pole already found.
+    pub merged: usize,
+    /// Eigensolves, in all.
+    pub solves: usize,
+}
+
+/// The poles of a rotor on supports over whirl frequency at `speed` (in the box of `bound`),
+/// each consistent with the frequency it reads them at, continued from those of the rotor read
+/// synchronously (frequency = `speed`; dense, or held sparse where `sparse`). The natural
+/// frequencies are the synchronous reading's at rest.
+pub fn modal_consistent(
+    system: &RotorSystem,
+    damping: &DampingModel,
+    speed: f64,
+    bound: f64,
+    sparse: bool,
+) -> Result<ModalResult, AnalysisError> {
+    let synchronous = system.read(speed, speed);
+    let start = match sparse {
+        true => modal_large(&synchronous, damping, speed, bound)?,
+        false => {
+            let model = DampedModel::build(&synchronous, damping)?;
+            modal_bounded(&synchronous, &model, speed, bound)?
+        }
+    };
+    let found: Vec<Option<super::consistent::Consistent>> = start
+        .poles
+        .rotor
+        .par_iter()
+        .map(|p| super::consistent::consistent(system, damping, speed, p.s))
+        .collect::<Result<_, _>>()?;
+    let doubled = system.layout() == Layout::Doubled;
+    let (mut kept, mut lost, mut merged, mut solves) = (vec![], 0, 0, 0);
+    for c in found {
+        let Some(c) = c else {
+            lost += 1;
+            continue;
+        };
+        solves += c.solves;
+        let same = |k: &super::consistent::Consistent| {
+            (k.s - c.s).norm() <= 1e-8 * c.s.norm()
+                || (doubled && (k.s - c.s.conj()).norm() <= 1e-8 * c.s.norm())
+        };
+        if kept.iter().any(same) {
+            merged += 1;
+            continue;
+        }
+        kept.push(c);
+    }
+    kept.retain(|c| in_box(c.s, bound));
+    // Doubled: each pole with its mirror, as the full model has them, for the set to choose.
+    let mut pairs = vec![];
+    for c in &kept {
+        pairs.push((c.s, c.shape.clone()));
+        if doubled {
+            let h = c.shape.len() / 2;
+            let (a, b) = c.shape.split_at(h);
+            let mirror = b.iter().chain(a).map(|z| z.conj()).collect();
+            pairs.push((c.s.conj(), mirror));
+        }
+    }
+    let poles = rotor_set(speed, pairs, doubled);
+    let residuals = poles
+        .rotor
+        .iter()
+        .map(|p| {
+            // The set keeps each pole's value (or its mirror's): the nearest is it.
+            let d = |c: &&super::consistent::Consistent| {
+                (c.s - p.s).norm().min((c.s.conj() - p.s).norm())
+            };
+            kept.iter()
+                .min_by(|a, b| d(a).total_cmp(&d(b)))
+                .map_or(0.0, |c| c.residual)
+        })
+        .collect();
+    Ok(ModalResult {
+        poles,
+        consistency: Some(Consistency {
+            residuals,
+            lost,
+            merged,
+            solves,
+        }),
+        natural_frequencies: start.natural_frequencies,
+        states: start.states,
+        dofs: system.dofs.clone(),
+    })
 }

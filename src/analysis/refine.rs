@@ -38,7 +38,7 @@ const FIRST: (usize, usize) = (8, 0);
 
 /// Residual, relative to the pole, at which a refined pole is accepted: far below the 1e-6 the
 /// reduction is checked to.
-const TOLERANCE: f64 = 1e-10;
+pub(super) const TOLERANCE: f64 = 1e-10;
 
 /// Largest Krylov space per refinement.
 const MAX_SPACE: usize = 120;

@@ -18,7 +18,9 @@
 //! basis corrected at the loads and supports only, under the same check.
 //!
 //! A large rotor's viscous or hysteretic model held sparse ([`Full::Sparse`]) is not reduced:
-//! each frequency is one sparse factor of `Z(i omega)`, exact and linear in the mesh.
+//! each frequency is one sparse factor of `Z(i omega)`, exact and linear in the mesh. So is a
+//! rotor on supports over whirl frequency (`model::supports::grid`), whatever its size: each
+//! frequency reads them at itself, which no reduction built once holds.
 
 use super::AnalysisError;
 use super::audit::frequency::{self, Harmonic, Orbit, Steady};
@@ -316,6 +318,7 @@ impl<'a> Responses<'a> {
             (None, Full::Sparse(held)) => At {
                 solver: Solver::Sparse {
                     pattern: &held.pattern,
+                    hysteretic: held.hysteretic,
                     parts: large::parts_of(self.system, held.hysteretic, speed),
                     terms: held.dampers.as_ref().map(|d| d.at(self.system, speed)),
                     speed,
@@ -348,7 +351,9 @@ pub struct At<'r> {
 enum Solver<'r> {
     Dense(Box<Steady>),
     Sparse {
+        /// At `speed`; for supports over whirl frequency rebuilt at each frequency solved.
         parts: large::Parts,
+        hysteretic: bool,
         pattern: &'r LuPattern,
         terms: Option<std::sync::Arc<large::Terms>>,
         speed: f64,
@@ -407,11 +412,22 @@ impl At<'_> {
             Solver::Dense(steady) => steady.amplitudes(omega, force),
             Solver::Sparse {
                 parts,
+                hysteretic,
                 pattern,
                 terms,
                 speed,
                 system,
             } => frequency::amplitudes(system.n(), system.layout(), omega, force, |l, rhs| {
+                // Supports over whirl frequency read at the excitation's (exact: a harmonic
+                // response whirls at the frequency it is driven at).
+                let read;
+                let parts = match system.frequency_dependent() {
+                    true => {
+                        read = large::parts_of(&system.read(*speed, l), *hysteretic, *speed);
+                        &read
+                    }
+                    false => parts,
+                };
                 Ok(parts.steady(pattern, l, *speed, rhs, terms.as_ref())?)
             }),
         }

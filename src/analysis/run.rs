@@ -2,6 +2,10 @@
 //! point of the numerics for the service (which converts the outcome to wire types).
 
 mod audit_report;
+mod models;
+
+pub use models::build;
+use models::{assemble, damping_error, harmonic_model, rigid_body};
 
 use super::AnalysisError;
 use super::audit::cases::{self, Assessment, Case};
@@ -24,12 +28,10 @@ use super::stability::{self, Threshold};
 use super::stability_large;
 use super::time::{self, TimeError, TimeResult};
 use super::unbalance::{Orbit, SteadyUnbalance};
+use crate::damping::DampedModel;
 use crate::damping::report::{self, ModelMatrices, ReportError};
-use crate::damping::{DampedModel, DampingError};
-use crate::fem::modal::ModalError;
-use crate::model::task::{MAX_CASES, Model, ReportPlan, Task, TaskKind};
+use crate::model::task::{MAX_CASES, ReportPlan, Task, TaskKind};
 use crate::model::{Invalid, rotor::Rotor};
-use crate::system::RotorSystem;
 
 /// What an analysis found, in domain types.
 #[derive(Debug, Clone)]
@@ -147,60 +149,10 @@ impl From<TimeError> for RunError {
     }
 }
 
-/// A rigid-body rotor is an invalid input (its supports, or its stiffness); anything else is a
-/// model the analysis cannot solve.
-fn damping_error(e: DampingError, rotor: &Rotor) -> RunError {
-    match e {
-        DampingError::Modal(ModalError::RigidBody { .. }) => {
-            let path = match rotor {
-                Rotor::Beam(_) => "rotor.supports",
-                _ => "rotor.stiffness",
-            };
-            RunError::Invalid(Invalid::one(path, e.to_string()))
-        }
-        other => RunError::Unsolvable(other.to_string()),
-    }
-}
-
-fn assemble(model: &Model) -> Result<RotorSystem, RunError> {
-    RotorSystem::assemble(&model.rotor)
-        .map_err(|e| RunError::Unsolvable(format!("the rotor cannot be assembled: {e}")))
-}
-
-/// Assembles the rotor and builds its damping model.
-pub fn build(model: &Model) -> Result<(RotorSystem, DampedModel), RunError> {
-    let system = assemble(model)?;
-    let damped =
-        DampedModel::build(&system, &model.damping).map_err(|e| damping_error(e, &model.rotor))?;
-    Ok((system, damped))
-}
-
 /// Why a large rotor's time response failed: it is integrated on a checked reduction only.
 const NOT_REDUCED: &str = "no modal reduction of this rotor passed the check against its full \
     model (every pole in the band within 1e-3 of its decay rate), and a rotor this large is not \
     integrated on its full model: use fewer elements";
-
-/// A harmonic response's full model: the damping model built dense, or where the rotor is held
-/// sparse the pattern of its dynamic stiffness.
-fn harmonic_model(
-    sparse: bool,
-    system: &RotorSystem,
-    model: &Model,
-    bound: f64,
-) -> Result<response::Owned, RunError> {
-    Ok(match sparse {
-        true => response::Owned::Sparse(
-            response::Held::new(system, &model.damping, bound).map_err(|e| match e {
-                AnalysisError::Damping(e) => damping_error(e, &model.rotor),
-                e => e.into(),
-            })?,
-        ),
-        false => response::Owned::Dense(
-            DampedModel::build(system, &model.damping)
-                .map_err(|e| damping_error(e, &model.rotor))?,
-        ),
-    })
-}
 
 /// Runs `task`, checking `control` for cancellation and counting progress there.
 pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
@@ -211,8 +163,19 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
             max_frequency,
             sparse,
         } => {
+            let system = assemble(model)?;
+            if system.frequency_dependent() {
+                return modal::modal_consistent(
+                    &system,
+                    &model.damping,
+                    *speed,
+                    *max_frequency,
+                    *sparse,
+                )
+                .map(Outcome::Modal)
+                .map_err(|e| rigid_body(e, &model.rotor));
+            }
             if *sparse {
-                let system = assemble(model)?;
                 return modal::modal_large(&system, &model.damping, *speed, *max_frequency)
                     .map(Outcome::Modal)
                     .map_err(|e| match e {
@@ -220,7 +183,8 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                         e => e.into(),
                     });
             }
-            let (system, damped) = build(model)?;
+            let damped = DampedModel::build(&system, &model.damping)
+                .map_err(|e| damping_error(e, &model.rotor))?;
             let r = modal::modal_bounded(&system, &damped, *speed, *max_frequency)?;
             Ok(Outcome::Modal(r))
         }
@@ -443,7 +407,7 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                 range: *range,
                 model: model.damping.name(),
                 reduction: solved.reduction().cloned(),
-                sparse: *sparse,
+                sparse: *sparse || system.frequency_dependent(),
             })
         }
         TaskKind::CriticalMap {
@@ -582,17 +546,9 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                 response,
                 model: model.damping.name(),
                 reduction: solved.reduction().cloned(),
-                sparse: *sparse,
+                sparse: *sparse || system.frequency_dependent(),
             })
         }
         TaskKind::Report(plan) => audit_report::run_report(plan, control),
-    }
-}
-
-/// A damping model that cannot be built because the rotor floats is an invalid input.
-fn rigid_body(e: AnalysisError, rotor: &Rotor) -> RunError {
-    match e {
-        AnalysisError::Damping(d) => damping_error(d, rotor),
-        e => e.into(),
     }
 }

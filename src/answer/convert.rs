@@ -29,6 +29,7 @@ pub fn pole(p: &poles::Pole) -> api::Pole {
         log_decrement: p.log_decrement(),
         whirl_ratio: (p.whirl != poles::Whirl::Internal).then_some(p.whirl_ratio),
         shape: None,
+        residual: None,
     }
 }
 
@@ -105,16 +106,33 @@ pub fn shaft_layout(rotor: &crate::model::rotor::Rotor) -> Option<api::ShaftLayo
 }
 
 pub fn modal(r: &ModalResult) -> api::ModalResponse {
+    let residuals = r.consistency.as_ref().map(|c| &c.residuals);
     let mut poles: Vec<api::Pole> = r
         .poles
         .rotor
         .iter()
-        .map(|p| {
+        .enumerate()
+        .map(|(i, p)| {
             let mut out = pole(p);
             out.shape = Some(translations(p, &r.dofs));
+            out.residual = residuals.and_then(|v| v.get(i).copied());
             out
         })
         .collect();
+    let read: Vec<f64> = r.poles.rotor.iter().map(|p| p.s.im.abs()).collect();
+    let consistency = r.consistency.as_ref().map(|c| api::ConsistencyInfo {
+        max_residual: c.residuals.iter().copied().fold(0.0, f64::max),
+        lost: c.lost,
+        merged: c.merged,
+        solves: c.solves,
+        read_at: match read.is_empty() {
+            true => [0.0, 0.0],
+            false => [
+                read.iter().copied().fold(f64::INFINITY, f64::min),
+                read.iter().copied().fold(0.0, f64::max),
+            ],
+        },
+    });
     poles.extend(r.poles.internal.iter().map(pole));
     api::ModalResponse {
         output_unit: Default::default(),
@@ -127,6 +145,7 @@ pub fn modal(r: &ModalResult) -> api::ModalResponse {
         max_frequency: None,
         full_model: api::Storage::Dense,
         shaft: None,
+        consistency,
     }
 }
 

@@ -42,6 +42,9 @@ impl Output {
                     if *sparse {
                         m.full_model = crate::model::api::Storage::Sparse;
                     }
+                    if let Some(c) = &m.consistency {
+                        m.warnings = model.whirl_warnings(c.read_at[0], c.read_at[1]);
+                    }
                 }
                 m
             }),

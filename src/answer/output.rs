@@ -62,7 +62,12 @@ impl Output {
 
     pub(super) fn set_warnings(&mut self, w: Vec<String>) {
         match self {
-            Output::Modal(o) => o.warnings = w,
+            // The analysis's own (supports over whirl frequency read past their tables) after.
+            Output::Modal(o) => {
+                let own = std::mem::take(&mut o.warnings);
+                o.warnings = w;
+                o.warnings.extend(own);
+            }
             Output::Campbell(o) => o.warnings = w,
             Output::Stability(o) => o.warnings = w,
             Output::Damping(o) => o.warnings = w,

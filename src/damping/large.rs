@@ -364,6 +364,32 @@ impl Problem {
         })
     }
 
+    /// `||Z(s) x|| / ((|s|^2 ||M|| + |s| ||D|| + ||K||) ||x||)` (max-norms, row sums for the
+    /// matrices): how nearly `(s, x)` is an eigenpair of this problem without internal
+    /// coordinates, relative to the size of its terms.
+    pub fn residual(&self, s: c64, x: &[c64]) -> f64 {
+        let mut r = vec![c64::new(0.0, 0.0); self.size];
+        let mut rows = vec![[0.0f64; 3]; self.size];
+        for (k, (list, f)) in [
+            (&self.mass, s * s),
+            (&self.damping, s),
+            (&self.stiffness, c64::new(1.0, 0.0)),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            for &(i, j, v) in list.iter() {
+                r[i] += f * v * x[j];
+                rows[i][k] += v.norm();
+            }
+        }
+        let norm = |k: usize| rows.iter().map(|row| row[k]).fold(0.0, f64::max);
+        let scale = s.norm_sqr() * norm(0) + s.norm() * norm(1) + norm(2);
+        let xn = x.iter().map(|v| v.norm()).fold(0.0, f64::max);
+        let rn = r.iter().map(|v| v.norm()).fold(0.0, f64::max);
+        rn / (scale * xn).max(f64::MIN_POSITIVE)
+    }
+
     /// Internal coordinates of this problem (the nonviscous model's branches).
     pub fn internal(&self) -> usize {
         self.terms.as_ref().map_or(0, |t| t.internal())

@@ -13,7 +13,12 @@
 //! `interp1d` for 2-3 points, else its smoothing spline), extrapolated beyond the table as ROSS
 //! does; only stiffness and damping may then change with the speed.
 
-use super::api::{Coefficient, Interpolation, SupportInput};
+mod general;
+pub mod grid;
+
+pub use general::{is_general, parse_general};
+
+use super::api::SupportInput;
 use super::error::{Invalid, loss_factor, non_negative};
 use super::spline::Curve;
 use crate::linalg::c64;
@@ -112,6 +117,14 @@ pub enum Law {
         values: Vec<Coefficients>,
         ross: Option<Vec<Curve>>,
     },
+    /// Over whirl frequency (and spin speed), `grid.rs`.
+    Grid(Box<grid::Grid>),
+    /// A grid read at one speed and frequency, keeping the grid's isotropy (so the rotor is
+    /// solved in the same coordinates at every reading).
+    Read {
+        values: Coefficients,
+        isotropic: bool,
+    },
 }
 
 /// A validated support in the general form.
@@ -135,10 +148,12 @@ impl GeneralSupport {
         support_path(self.seal, self.index)
     }
 
-    /// The coefficients at `speed`.
+    /// The coefficients at `speed`: for a table over whirl frequency, the synchronous ones
+    /// (frequency = speed, what an unbalance reads and a critical speed crosses at).
     pub fn at(&self, speed: f64) -> Coefficients {
         match &self.law {
-            Law::Constant(c) => *c,
+            Law::Constant(c) | Law::Read { values: c, .. } => *c,
+            Law::Grid(g) => g.at(speed, speed),
             Law::Table {
                 ross: Some(curves), ..
             } => {
@@ -169,6 +184,42 @@ impl GeneralSupport {
         }
     }
 
+    /// The coefficients at `speed` under whirl at `frequency` (rad/s, either sign).
+    pub fn at_whirl(&self, speed: f64, frequency: f64) -> Coefficients {
+        match &self.law {
+            Law::Grid(g) => g.at(speed, frequency),
+            _ => self.at(speed),
+        }
+    }
+
+    /// Whether its coefficients depend on the whirl frequency.
+    pub fn frequency_dependent(&self) -> bool {
+        matches!(&self.law, Law::Grid(_))
+    }
+
+    /// Its table over whirl frequency, if it has one.
+    pub fn grid(&self) -> Option<&grid::Grid> {
+        match &self.law {
+            Law::Grid(g) => Some(g),
+            _ => None,
+        }
+    }
+
+    /// This support with its coefficients read at `speed` and `frequency`, constant (the same
+    /// support where they do not depend on the frequency).
+    pub fn read(&self, speed: f64, frequency: f64) -> Self {
+        match &self.law {
+            Law::Grid(g) => GeneralSupport {
+                law: Law::Read {
+                    values: g.at(speed, frequency),
+                    isotropic: g.isotropic(),
+                },
+                ..self.clone()
+            },
+            _ => self.clone(),
+        }
+    }
+
     /// The coefficients the rotor's modes at rest are taken with: at speed 0, or, for a ROSS
     /// curve, at the table's first speed (as a linear table holds them below it), so that a
     /// curve extrapolated to rest does not decide the modal basis.
@@ -188,11 +239,12 @@ impl GeneralSupport {
         matches!(&self.law, Law::Table { ross: Some(_), .. })
     }
 
-    /// The table's speeds (none for constant coefficients).
+    /// The speeds of a table over speed alone (none for constant coefficients, and none for a
+    /// table over whirl frequency, which is only ever read at one speed and frequency).
     pub fn speeds(&self) -> &[f64] {
         match &self.law {
-            Law::Constant(_) => &[],
             Law::Table { speeds, .. } => speeds,
+            _ => &[],
         }
     }
 
@@ -201,229 +253,18 @@ impl GeneralSupport {
         match &self.law {
             Law::Constant(c) => c.isotropic(),
             Law::Table { values, .. } => values.iter().all(Coefficients::isotropic),
+            Law::Grid(g) => g.isotropic(),
+            Law::Read { isotropic, .. } => *isotropic,
         }
     }
 
     /// Whether its mass coefficients change with speed.
     pub fn mass_varies(&self) -> bool {
         match &self.law {
-            Law::Constant(_) => false,
             Law::Table { values, .. } => values.iter().any(|v| v.m != values[0].m),
+            _ => false,
         }
     }
-}
-
-/// One coefficient as given: a number, or one value per table speed.
-fn values(
-    c: &Option<Coefficient>,
-    at: &str,
-    table: Option<usize>,
-    bad: &mut Invalid,
-) -> Option<Vec<f64>> {
-    let v = match c {
-        None => return Some(vec![]),
-        Some(Coefficient::Number(x)) => vec![*x],
-        Some(Coefficient::Table(v)) => {
-            match table {
-                None => {
-                    bad.push(
-                        at,
-                        "an array of values needs `speeds`: the spin speeds they are given at",
-                    );
-                    return None;
-                }
-                Some(n) if v.len() != n => {
-                    bad.push(
-                        at,
-                        format!(
-                            "needs one value per speed in `speeds`: {n} (got {})",
-                            v.len()
-                        ),
-                    );
-                    return None;
-                }
-                Some(_) => {}
-            }
-            v.clone()
-        }
-    };
-    for (i, x) in v.iter().enumerate() {
-        if !x.is_finite() {
-            let path = if matches!(c, Some(Coefficient::Table(_))) {
-                format!("{at}[{i}]")
-            } else {
-                at.to_string()
-            };
-            bad.push(path, "must be a finite number");
-            return None;
-        }
-    }
-    Some(v)
-}
-
-/// The general-form fields of a support, with their names.
-fn general_fields(s: &SupportInput) -> [(&'static str, &Option<Coefficient>); 12] {
-    [
-        ("kxx", &s.kxx),
-        ("kxy", &s.kxy),
-        ("kyx", &s.kyx),
-        ("kyy", &s.kyy),
-        ("cxx", &s.cxx),
-        ("cxy", &s.cxy),
-        ("cyx", &s.cyx),
-        ("cyy", &s.cyy),
-        ("mxx", &s.mxx),
-        ("mxy", &s.mxy),
-        ("myx", &s.myx),
-        ("myy", &s.myy),
-    ]
-}
-
-/// Whether a support is given in the general form.
-pub fn is_general(s: &SupportInput) -> bool {
-    general_fields(s).iter().any(|(_, v)| v.is_some()) || s.speeds.is_some()
-}
-
-/// Validates the general form of `s` (at path `at`), its node already checked.
-pub fn parse_general(
-    s: &SupportInput,
-    (index, seal): (usize, bool),
-    (node, link): (usize, Option<usize>),
-    at: &str,
-    bad: &mut Invalid,
-) -> Option<GeneralSupport> {
-    let before = bad.count();
-    for (field, given) in [
-        ("stiffness", s.stiffness.is_some()),
-        ("damping", s.damping.is_some()),
-    ] {
-        if given {
-            bad.push(
-                format!("{at}.{field}"),
-                "give the isotropic form (`stiffness`, `damping`) or the general form (`kxx`, \
-                 `kxy`, ..., `speeds`), not both",
-            );
-        }
-    }
-    let table = match &s.speeds {
-        None => None,
-        Some(w) => {
-            let path = format!("{at}.speeds");
-            if w.len() < 2 || w.len() > MAX_TABLE {
-                bad.push(
-                    &path,
-                    format!("needs 2 to {MAX_TABLE} speeds (got {})", w.len()),
-                );
-            }
-            for (i, x) in w.iter().enumerate() {
-                if !x.is_finite() || *x < 0.0 {
-                    bad.push(format!("{path}[{i}]"), "must be a finite speed >= 0");
-                } else if i > 0 && w[i - 1].is_finite() && *x <= w[i - 1] {
-                    bad.push(format!("{path}[{i}]"), "speeds must be strictly increasing");
-                }
-            }
-            Some(w.len())
-        }
-    };
-    let eta = bad.check(
-        &format!("{at}.loss_factor"),
-        loss_factor(s.loss_factor.unwrap_or(0.0)),
-    );
-    let mut columns: Vec<Vec<f64>> = vec![];
-    for (name, c) in general_fields(s) {
-        columns.push(values(c, &format!("{at}.{name}"), table, bad).unwrap_or_default());
-    }
-    if bad.count() > before {
-        return None;
-    }
-    if s.interpolation.is_some() && s.speeds.is_none() {
-        bad.push(
-            format!("{at}.interpolation"),
-            "applies to a table: give `speeds` and the coefficients at them",
-        );
-        return None;
-    }
-    let points = table.unwrap_or(1);
-    // Column order: k(xx, xy, yx, yy), c(...), m(...); kyy and cyy default to kxx and cxx.
-    let value = |col: usize, i: usize| -> f64 {
-        let v = &columns[col];
-        match v.len() {
-            0 => match col {
-                3 => value_of(&columns[0], i),
-                7 => value_of(&columns[4], i),
-                _ => 0.0,
-            },
-            _ => value_of(v, i),
-        }
-    };
-    fn value_of(v: &[f64], i: usize) -> f64 {
-        match v.len() {
-            0 => 0.0,
-            1 => v[0],
-            _ => v[i],
-        }
-    }
-    let matrix = |base: usize, i: usize| Matrix2 {
-        xx: value(base, i),
-        xy: value(base + 1, i),
-        yx: value(base + 2, i),
-        yy: value(base + 3, i),
-    };
-    let at_point = |i: usize| Coefficients {
-        k: matrix(0, i),
-        c: matrix(4, i),
-        m: matrix(8, i),
-    };
-    let law = match &s.speeds {
-        None => Law::Constant(at_point(0)),
-        Some(w) => {
-            let values: Vec<Coefficients> = (0..points).map(at_point).collect();
-            let ross = match s.interpolation {
-                Some(Interpolation::Ross) => {
-                    if values.iter().any(|v| v.m != values[0].m) {
-                        bad.push(
-                            format!("{at}.interpolation"),
-                            "ROSS's interpolation is for stiffness and damping: mass \
-                             coefficients must not change with the speed (use \"linear\")",
-                        );
-                        return None;
-                    }
-                    if eta.is_some_and(|e| e > 0.0) {
-                        bad.push(
-                            format!("{at}.loss_factor"),
-                            "a table with ROSS's interpolation has no loss factor (ROSS has \
-                             none; use \"linear\" for a tabulated lossy support)",
-                        );
-                        return None;
-                    }
-                    Some(
-                        (0..12)
-                            .map(|col| {
-                                Curve::ross(
-                                    w,
-                                    &(0..points).map(|i| value(col, i)).collect::<Vec<_>>(),
-                                )
-                            })
-                            .collect(),
-                    )
-                }
-                _ => None,
-            };
-            Law::Table {
-                speeds: w.clone(),
-                values,
-                ross,
-            }
-        }
-    };
-    Some(GeneralSupport {
-        index,
-        seal,
-        node,
-        link,
-        law,
-        loss_factor: eta?,
-    })
 }
 
 /// With a support on ROSS's curves the rotor's tables are scheduled on one model

@@ -146,6 +146,24 @@ impl RotorSystem {
         }
     }
 
+    /// Whether any support's coefficients depend on the whirl frequency.
+    pub fn frequency_dependent(&self) -> bool {
+        self.supports
+            .iter()
+            .any(|s| s.support.frequency_dependent())
+    }
+
+    /// The rotor with each support over whirl frequency read at `speed` and `frequency`,
+    /// constant, in the same coordinates (what a pole or a harmonic response at that
+    /// frequency sees).
+    pub fn read(&self, speed: f64, frequency: f64) -> Self {
+        let mut s = self.clone();
+        for p in &mut s.supports {
+            p.support = p.support.read(speed, frequency);
+        }
+        s
+    }
+
     /// Whether any support's coefficients change with the speed.
     pub fn speed_dependent(&self) -> bool {
         self.supports.iter().any(|s| !s.support.speeds().is_empty())

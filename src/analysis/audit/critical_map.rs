@@ -326,6 +326,8 @@ fn curves(rotor: &BeamRotor) -> Vec<Curve<'_>> {
                     out.push(curve("kyy", Coefficient::Table(g, |k| k.yy)));
                 }
             }
+            // A map's task refuses supports over whirl frequency (`model::task`).
+            Law::Grid(_) | Law::Read { .. } => {}
         }
     }
     out.sort_by_key(|c| c.support);

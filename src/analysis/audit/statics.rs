@@ -154,7 +154,8 @@ pub fn static_deflection(
                 .general_supports()
                 .iter()
                 .filter(|g| !g.seal && g.node < rotor.shaft_nodes())
-                .map(|g| (g.index, g.node, g.at(speed).k)),
+                // A static load does not whirl: a table over whirl frequency is read at 0.
+                .map(|g| (g.index, g.node, g.at_whirl(speed, 0.0).k)),
         )
         .collect();
     let (ux, uy, reactions) = match held {

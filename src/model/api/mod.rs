@@ -8,6 +8,7 @@
 
 mod analyses;
 mod audit;
+mod damping;
 mod loads;
 mod report;
 mod service;
@@ -17,6 +18,7 @@ mod units;
 
 pub use analyses::*;
 pub use audit::*;
+pub use damping::*;
 pub use loads::*;
 pub use report::*;
 pub use service::*;
@@ -337,7 +339,15 @@ pub struct SupportInput {
     /// keeps a state matrix, counted against the memory budget before anything is built).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub speeds: Option<Vec<f64>>,
-    /// How a table is read between and beyond its speeds (default `linear`).
+    /// Whirl frequencies of a table of coefficients, rad/s, >= 0 and increasing (2 to 512): each
+    /// coefficient is then one number, a list over them, or with `speeds` a list of lists (per
+    /// speed, a list over the frequencies). A pole reads the table at its own `|frequency|`, a
+    /// harmonic response at the excitation frequency, a static analysis at 0; where only one
+    /// value is read at a speed it is the synchronous one (frequency = speed).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub frequencies: Option<Vec<f64>>,
+    /// How a table is read between and beyond its points: `linear` by default for a table over
+    /// `speeds` alone, `pchip` for one over `frequencies`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub interpolation: Option<Interpolation>,
 }
@@ -346,8 +356,13 @@ pub struct SupportInput {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, ToSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum Interpolation {
-    /// Linear between the speeds, held at the end values outside them.
+    /// Linear between the points. Over `speeds` alone: held at the end values outside them;
+    /// over `frequencies`: continued along the end segments (as ROSS 3).
     Linear,
+    /// A table over `frequencies` (and `speeds`): scipy's `PchipInterpolator` (shape
+    /// preserving, through every value) along the frequencies, then along the speeds,
+    /// continued past the ends along the end slopes (ROSS 3's tables).
+    Pchip,
     /// ROSS 2.3.0's: each coefficient on scipy's `interp1d` (2 or 3 speeds: linear,
     /// quadratic) or its smoothing spline (`UnivariateSpline`, 4 speeds and more), which
     /// need not pass through the table's values, extrapolated beyond the table. Stiffness and
@@ -355,21 +370,27 @@ pub enum Interpolation {
     Ross,
 }
 
-/// A support coefficient: one number, or one per speed of the support's `speeds`.
+/// A support coefficient: one number, one per point of the support's `speeds` (or
+/// `frequencies`), or with both a list per speed of values over the frequencies.
 #[derive(Debug, Clone, Serialize, ToSchema)]
 #[serde(untagged)]
 pub enum Coefficient {
     Number(f64),
     Table(Vec<f64>),
+    Grid(Vec<Vec<f64>>),
 }
 
 impl<'de> Deserialize<'de> for Coefficient {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
         match Value::deserialize(d)? {
             v @ Value::Number(_) => variant(v).map(Coefficient::Number),
+            Value::Array(v) if v.iter().any(Value::is_array) => {
+                variant(Value::Array(v)).map(Coefficient::Grid)
+            }
             v @ Value::Array(_) => variant(v).map(Coefficient::Table),
             _ => Err(serde::de::Error::custom(
-                "must be a number or an array of numbers (one per speed of `speeds`)",
+                "must be a number, an array of numbers (one per speed of `speeds` or frequency \
+                 of `frequencies`) or an array of such arrays (one per speed)",
             )),
         }
     }

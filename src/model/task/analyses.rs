@@ -151,7 +151,7 @@ impl SweepRequest {
             false => (sweep_cost(size, count, limits, false, values), None),
         };
         let (lo, hi) = speeds.range();
-        Ok(Task {
+        let task = Task {
             output_unit: self.output_unit.unwrap_or_default(),
             warnings: model.warnings(lo, hi),
             kind: TaskKind::Stability {
@@ -160,7 +160,9 @@ impl SweepRequest {
                 held,
             },
             cost,
-        })
+        };
+        task.whirl_read()?;
+        Ok(task)
     }
 }
 

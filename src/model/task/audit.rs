@@ -389,7 +389,7 @@ impl Level1Request {
         let model_doubled = model.rotor.doubled();
         let values = 3 * qs.len().max(AUTO_COUNT) as u64 + 32;
         let damper_bytes = model.damper_bytes(limits);
-        Ok(Task {
+        let task = Task {
             output_unit: self.output_unit.unwrap_or_default(),
             warnings: model.warnings(speed, speed),
             kind: TaskKind::Level1 {
@@ -409,7 +409,9 @@ impl Level1Request {
                 false => sweep_cost(size, 1, limits, false, values)
                     .with_work(size.eigen_work() * solves as f64),
             },
-        })
+        };
+        task.whirl_read()?;
+        Ok(task)
     }
 }
 
@@ -487,9 +489,16 @@ impl FrequencyResponseRequest {
         let work = count as f64 * (s * s * s) as f64 * 3.0;
         let speed = speed.expect("validated");
         let damper_bytes = model.damper_bytes(limits);
+        let (lo, hi) = frequencies
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |(a, b), w| {
+                (a.min(w.abs()), b.max(w.abs()))
+            });
+        let mut warnings = model.warnings(speed, speed);
+        warnings.extend(model.whirl_warnings(lo, hi));
         Task {
             output_unit: self.output_unit.unwrap_or_default(),
-            warnings: model.warnings(speed, speed),
+            warnings,
             kind: TaskKind::Frequency {
                 model,
                 speed,

@@ -264,9 +264,12 @@ impl UnbalanceResponseRequest {
             false => Cost::new(size, 0, 0, extra, values).with_work(work),
         };
         let (lo, hi) = speeds.range();
+        // An unbalance whirls at the speed: a table over whirl frequency is read there too.
+        let mut warnings = model.warnings(lo, hi);
+        warnings.extend(model.whirl_warnings(lo, hi));
         Task {
             output_unit: self.output_unit.unwrap_or_default(),
-            warnings: model.warnings(lo, hi),
+            warnings,
             kind: TaskKind::Unbalance {
                 model,
                 speeds,

@@ -123,6 +123,10 @@ impl Model {
             if let Some(w) = held_warning(&path, s, lo, hi) {
                 out.push(w);
             }
+            if let Some(g) = s.grid() {
+                out.extend(g.few_points(&path));
+                out.extend(g.past(&path, false, (lo, hi)));
+            }
             if self.damping.on_modes() && s.speeds().first().is_some_and(|&w| w > 0.0) {
                 out.push(format!(
                     "{path}: the {} model is built on the modes of the rotor at rest, where \
@@ -132,6 +136,16 @@ impl Model {
             }
         }
         out
+    }
+
+    /// Warnings for supports over whirl frequency read at whirl frequencies in `[lo, hi]`
+    /// (rad/s) past their tables.
+    pub fn whirl_warnings(&self, lo: f64, hi: f64) -> Vec<String> {
+        self.rotor
+            .general_supports()
+            .iter()
+            .filter_map(|s| s.grid()?.past(&s.path(), true, (lo, hi)))
+            .collect()
     }
 
     fn check_states(&self, limits: &Limits, bad: &mut Invalid) {
@@ -318,6 +332,48 @@ impl Task {
         }
     }
 
+    /// Supports over whirl frequency are read by the analyses built for them (the modal
+    /// analysis, with poles consistent with their own frequency; the harmonic responses, at
+    /// the excitation frequency; the static deflection, at 0) under the viscous and
+    /// hysteretic models; anything else refuses them, naming the first one's `frequencies`.
+    pub(crate) fn whirl_read(&self) -> Result<(), Invalid> {
+        let supports: &[crate::model::supports::GeneralSupport] = match &self.kind {
+            TaskKind::CriticalMap { rotor, .. } => rotor.general_supports(),
+            TaskKind::Static { .. } | TaskKind::Report(_) => return Ok(()),
+            _ => self.model().map_or(&[], |m| m.rotor.general_supports()),
+        };
+        let Some(first) = supports.iter().find(|s| s.frequency_dependent()) else {
+            return Ok(());
+        };
+        let path = format!("{}.frequencies", first.path());
+        let read = matches!(
+            self.kind,
+            TaskKind::Modal { .. } | TaskKind::Unbalance { .. } | TaskKind::Frequency { .. }
+        );
+        if !read {
+            return Err(Invalid::one(
+                path,
+                format!(
+                    "a support whose coefficients depend on the whirl frequency is read by \
+                     `modal`, `unbalance-response`, `frequency-response` and `static` so far, \
+                     not by `{}`",
+                    self.name()
+                ),
+            ));
+        }
+        match self.model().map(|m| &m.damping) {
+            Some(DampingModel::Viscous | DampingModel::Hysteretic) | None => Ok(()),
+            Some(d) => Err(Invalid::one(
+                path,
+                format!(
+                    "a support whose coefficients depend on the whirl frequency is read by the \
+                     viscous and hysteretic models so far, not by the {} model",
+                    d.name()
+                ),
+            )),
+        }
+    }
+
     /// The field that sizes the task most (for a message about its memory).
     pub fn size_field(&self) -> &'static str {
         let size = self.cost.size;
@@ -344,6 +400,7 @@ impl Task {
 
     /// Refuses a task whose answer would exceed the limit (`path`: the field that sets it).
     fn bounded(self, limits: &Limits, path: &str) -> Result<Self, Invalid> {
+        self.whirl_read()?;
         if self.cost.response_bytes > limits.max_response_bytes {
             return Err(Invalid::one(
                 path,

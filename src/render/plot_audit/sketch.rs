@@ -47,6 +47,10 @@ fn coefficient(c: &Option<Coefficient>) -> Option<String> {
             let (lo, hi) = super::range(t.iter().copied(), 0.0);
             Some(format!("{lo:.2e}..{hi:.2e} (Ω)"))
         }
+        Coefficient::Grid(g) => {
+            let (lo, hi) = super::range(g.iter().flatten().copied(), 0.0);
+            Some(format!("{lo:.2e}..{hi:.2e} (Ω, ω)"))
+        }
     }
 }
 
