@@ -406,3 +406,44 @@ async fn audit_examples() {
     let i = q.iter().position(|&x| x > q0).unwrap();
     assert!(d[i - 1] > 0.0 && d[i] < 0.0, "{q0} {d:?}");
 }
+
+#[tokio::test]
+async fn seal_over_frequency() {
+    let r = run("seal-over-frequency.modal.json").await;
+    let poles = r["poles"].as_array().unwrap();
+    assert_eq!(poles.len(), 4);
+    let c = &r["consistency"];
+    assert!(num(&c["max_residual"]) < 1e-12, "{c}");
+    assert_eq!(c["solves"], json!(14), "{c}");
+    assert_eq!(c["lost"], json!(0), "{c}");
+    let first = poles.iter().find(|p| p["whirl"] == "forward").unwrap();
+    assert_printed(num(&first["frequency"]), "471.2", "first forward frequency");
+    assert_printed(
+        num(&first["decay_rate"]),
+        "-18.94",
+        "first forward decay rate",
+    );
+    // The seal read at the speed, 800 rad/s, as constants (N/m, N s/m).
+    let mut body = example("seal-over-frequency.modal.json");
+    body["rotor"]["seals"] = json!([{"node": 15, "kxx": 2e6 + 1.5e3 * 800.0,
+        "kxy": 300.0 * 800.0, "kyx": -300.0 * 800.0, "cxx": 3000.0 - 800.0}]);
+    let (status, s) = post_json("/v1/modal", &body).await;
+    assert_eq!(status, 200, "{s}");
+    let sync = s["poles"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|p| p["whirl"] == "forward")
+        .unwrap()
+        .clone();
+    assert_printed(
+        num(&sync["frequency"]),
+        "480.8",
+        "synchronous reading's frequency",
+    );
+    assert_printed(
+        num(&sync["decay_rate"]),
+        "-15.99",
+        "synchronous reading's decay rate",
+    );
+}
