@@ -351,3 +351,40 @@ async fn an_unbalance_response_reads_the_seal_at_the_spin_speed() {
     println!("unbalance: tabulated over whirl frequency vs over speed {worst:.1e}");
     assert!(worst <= 1e-8, "{worst:e}");
 }
+
+/// The bundled seal example on 900 elements (1802 coordinates, held sparse): each pole is a
+/// pole of the same rotor with the seal read by hand at its frequency (N/m, N s/m).
+#[tokio::test]
+async fn a_rotor_held_sparse_reads_its_seal_at_each_poles_frequency() {
+    let text = std::fs::read_to_string("examples/seal-over-frequency.modal.json").unwrap();
+    let mut body: Value = serde_json::from_str(&text).unwrap();
+    let (n, speed) = (900, 800.0);
+    let e = n / 3;
+    let rotor = &mut body["rotor"];
+    for (i, k) in [e, n - 2 * e, e].iter().enumerate() {
+        rotor["shaft"][i]["elements"] = json!(k);
+    }
+    rotor["disks"][0]["node"] = json!(e + 2);
+    rotor["disks"][1]["node"] = json!(n - e - 3);
+    rotor["supports"][1]["node"] = json!(n - 1);
+    rotor["seals"][0]["node"] = json!(n / 2);
+    let (status, r) = post_json("/v1/modal", &body).await;
+    assert_eq!(status, 200, "{r}");
+    assert_eq!(r["full_model"], "sparse");
+    assert_eq!(r["consistency"]["lost"], json!(0), "{}", r["consistency"]);
+    let found = poles(&r);
+    assert_eq!(found.len(), 4, "{found:?}");
+    for s in found {
+        let w = s.im.abs();
+        let mut constant = body.clone();
+        constant["rotor"]["seals"] = json!([{"node": n / 2, "kxx": 2e6 + 1.5e3 * w,
+            "kxy": 300.0 * speed, "kyx": -300.0 * speed, "cxx": 3000.0 - w}]);
+        let (status, c) = post_json("/v1/modal", &constant).await;
+        assert_eq!(status, 200, "{c}");
+        let nearest = poles(&c)
+            .into_iter()
+            .map(|t| (t - s).norm())
+            .fold(f64::INFINITY, f64::min);
+        assert!(nearest <= 1e-8 * s.norm(), "{s}: {nearest:e}");
+    }
+}
