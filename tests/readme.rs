@@ -447,3 +447,36 @@ async fn seal_over_frequency() {
         "synchronous reading's decay rate",
     );
 }
+
+#[tokio::test]
+async fn seal_over_frequency_campbell() {
+    let r = run("seal-over-frequency.campbell.json").await;
+    let critical = numbers(&r["critical_speeds"]);
+    assert_eq!(critical.len(), 2, "{critical:?}");
+    assert_printed(critical[0], "470.5", "first critical speed");
+    assert_printed(critical[1], "1797.9", "second critical speed");
+    assert!(r["threshold"].is_null(), "{}", r["threshold"]);
+    // The seal read at the speed: a table over speed alone at the synchronous values (linear
+    // in the speed, so exact between its points): N/m, N s/m.
+    let mut body = example("seal-over-frequency.campbell.json");
+    let ts = [0.0, 250.0, 500.0, 750.0, 1000.0, 1500.0, 2000.0, 2400.0];
+    let col = |f: &dyn Fn(f64) -> f64| ts.iter().map(|&w| f(w)).collect::<Vec<f64>>();
+    body["rotor"]["seals"] = json!([{"node": 15, "speeds": ts,
+        "kxx": col(&|w| 2e6 + 1.5e3 * w), "kxy": col(&|w| 300.0 * w),
+        "kyx": col(&|w| -300.0 * w), "cxx": col(&|w| 3000.0 - w)}]);
+    let (status, s) = post_json("/v1/campbell", &body).await;
+    assert_eq!(status, 200, "{s}");
+    let sync = numbers(&s["critical_speeds"]);
+    assert_printed(sync[0], "470.5", "synchronous first critical speed");
+    assert_printed(sync[1], "1797.9", "synchronous second critical speed");
+    let t = num(&s["threshold"]);
+    assert_printed(t, "1925.2", "synchronous threshold");
+    assert_printed(
+        3000.0 - t,
+        "1075",
+        "seal damping read at the threshold speed",
+    );
+    let first = num(&r["branches"][0]["frequency"][0]).abs();
+    assert!((first - 470.0).abs() < 5.0, "{first}");
+    assert_printed(3000.0 - 470.0, "2530", "seal damping read at 470 rad/s");
+}

@@ -53,10 +53,12 @@ fn sparse_threshold_is_the_dense_one() {
         let dense = DampedModel::build(&system, &model).unwrap();
         let bound = 3000.0;
         let in_bound = |w: f64| {
-            poles_at(&dense, w).map(|mut set| {
-                set.rotor.retain(|p| in_box(p.s, bound));
-                set
-            })
+            poles_at(&dense, w)
+                .map(|mut set| {
+                    set.rotor.retain(|p| in_box(p.s, bound));
+                    set
+                })
+                .map_err(Into::into)
         };
         let (exact, _) = curve_of(&in_bound, &speeds, &control).unwrap();
         let dense_s = t.elapsed().as_secs_f64();

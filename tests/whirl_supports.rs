@@ -117,8 +117,12 @@ async fn a_frequency_response_reads_the_support_at_the_excitation_frequency() {
 async fn tables_over_whirl_frequency_are_refused_where_not_yet_read() {
     let rotor = one_mass(false);
     for (uri, extra) in [
-        ("/v1/campbell", json!({"speeds": [0.0, 100.0]})),
-        ("/v1/stability", json!({"speeds": [0.0, 100.0]})),
+        ("/v1/level1", json!({"speed": 100.0, "node": 0})),
+        (
+            "/v1/time-response",
+            json!({"speed": 100.0, "duration": 0.01, "output_interval": 0.001,
+                   "nodes": [0]}),
+        ),
     ] {
         let mut body = json!({"rotor": rotor, "damping": {"model": "viscous"}});
         for (k, v) in extra.as_object().unwrap() {
@@ -387,4 +391,134 @@ async fn a_rotor_held_sparse_reads_its_seal_at_each_poles_frequency() {
             .fold(f64::INFINITY, f64::min);
         assert!(nearest <= 1e-8 * s.norm(), "{s}: {nearest:e}");
     }
+}
+
+/// The mass on k(w), c(w): its pole does not move with the speed, so its branch is flat at the
+/// closed-form frequency and crosses the 1x line there.
+#[tokio::test]
+async fn the_campbell_of_a_mass_on_a_frequency_dependent_support_is_its_closed_form() {
+    let want = closed_form();
+    let speeds: Vec<f64> = (0..=20).map(|i| 50.0 * i as f64).collect();
+    let body = json!({"rotor": one_mass(false), "damping": {"model": "viscous"},
+                      "speeds": speeds});
+    let (status, r) = post_json("/v1/campbell", &body).await;
+    assert_eq!(status, 200, "{r}");
+    for b in r["branches"].as_array().unwrap() {
+        for (f, d) in b["frequency"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .zip(b["decay_rate"].as_array().unwrap())
+        {
+            let s = C::new(num(d), num(f).abs());
+            assert!(
+                (s - want).norm() <= 1e-10 * want.norm(),
+                "{s} against {want}"
+            );
+        }
+    }
+    let critical = common::floats(&r["critical_speeds"]);
+    assert_eq!(critical.len(), 1, "{}", r["critical_speeds"]);
+    assert!(
+        (critical[0] - want.im).abs() <= 1e-9 * want.im,
+        "{critical:?} against {want}"
+    );
+}
+
+/// The bundled seal example over a sweep: every pole the Campbell reports is the one
+/// `/v1/modal` reports at that speed, and each forward critical speed is where the rotor with
+/// the seal read (by hand) at that speed as constants whirls at it.
+#[tokio::test]
+async fn the_campbell_of_the_seal_example_is_its_modal_analysis_at_each_speed() {
+    let text = std::fs::read_to_string("examples/seal-over-frequency.modal.json").unwrap();
+    let base: Value = serde_json::from_str(&text).unwrap();
+    let speeds: Vec<f64> = (0..=24).map(|i| 100.0 * i as f64).collect();
+    let mut body = base.clone();
+    body.as_object_mut().unwrap().remove("speed");
+    body["speeds"] = json!(speeds);
+    let (status, r) = post_json("/v1/campbell", &body).await;
+    assert_eq!(status, 200, "{r}");
+    let branches = r["branches"].as_array().unwrap();
+    assert!(branches.len() >= 4, "{}", branches.len());
+    for (i, &w) in speeds.iter().enumerate() {
+        let mut m = base.clone();
+        m["speed"] = json!(w);
+        let (status, modal) = post_json("/v1/modal", &m).await;
+        assert_eq!(status, 200, "{modal}");
+        let at = poles(&modal);
+        let mut reported = 0;
+        for b in branches {
+            let (f, d) = (&b["frequency"][i], &b["decay_rate"][i]);
+            if f.is_null() {
+                continue;
+            }
+            reported += 1;
+            let s = C::new(num(d), num(f));
+            let nearest = at
+                .iter()
+                .flat_map(|t| [*t, t.conj()])
+                .map(|t| (t - s).norm())
+                .fold(f64::INFINITY, f64::min);
+            assert!(
+                nearest <= 1e-10 * s.norm(),
+                "{w} rad/s: {s} is {nearest:e} from modal"
+            );
+        }
+        assert_eq!(
+            reported,
+            at.len(),
+            "{w} rad/s: every modal pole on a branch"
+        );
+    }
+    let critical = common::floats(&r["critical_speeds"]);
+    assert!(!critical.is_empty(), "{}", r["critical_speeds"]);
+    for &w in &critical {
+        let mut constant = base.clone();
+        constant["speed"] = json!(w);
+        constant["rotor"]["seals"] = json!([{"node": 15, "kxx": 2e6 + 1.5e3 * w,
+            "kxy": 300.0 * w, "kyx": -300.0 * w, "cxx": 3000.0 - w}]);
+        let (status, c) = post_json("/v1/modal", &constant).await;
+        assert_eq!(status, 200, "{c}");
+        let nearest = poles(&c)
+            .into_iter()
+            .map(|t| (t.im.abs() - w).abs())
+            .fold(f64::INFINITY, f64::min);
+        assert!(nearest <= 1e-8 * w, "critical {w}: {nearest:e}");
+    }
+    println!(
+        "seal example Campbell: critical speeds {critical:?}, threshold {}",
+        r["threshold"]
+    );
+}
+
+/// The mass on k(w), c(w) with skew cross-coupling `q(W) = 100 W` N/m growing with the speed:
+/// at the threshold the pole `i w` satisfies `k_s + k(w) = m w^2` and `q = c(w) w`, so
+/// `w* = (k1 + sqrt(k1^2 + 4 m (k_s + k0))) / 2m` and `W* = c(w*) w* / 100`.
+#[tokio::test]
+async fn the_threshold_on_a_frequency_dependent_support_is_its_closed_form() {
+    let (w, k, c) = table();
+    let speeds = [0.0, 2000.0];
+    let rows = |v: &Vec<f64>| json!([v, v]);
+    let q: Vec<Vec<f64>> = speeds.iter().map(|&s| vec![100.0 * s; w.len()]).collect();
+    let minus: Vec<Vec<f64>> = q.iter().map(|r| r.iter().map(|x| -x).collect()).collect();
+    let support = json!({"node": 0, "frequencies": w, "speeds": speeds, "kxx": rows(&k),
+                         "cxx": rows(&c), "kxy": q, "kyx": minus});
+    let rotor = json!({"type": "matrices", "mass": [[M]], "stiffness": [[KS]],
+                       "supports": [support]});
+    let grid: Vec<f64> = (0..=20).map(|i| 100.0 * i as f64).collect();
+    let body = json!({"rotor": rotor, "damping": {"model": "viscous"}, "speeds": grid});
+    let (status, r) = post_json("/v1/stability", &body).await;
+    assert_eq!(status, 200, "{r}");
+    let ws = (K1 + (K1 * K1 + 4.0 * M * (KS + K0)).sqrt()) / (2.0 * M);
+    let threshold = (C0 + C1 * ws) * ws / 100.0;
+    assert!(
+        (ws - 372.3).abs() < 0.05 && (threshold - 1065.5).abs() < 0.5,
+        "{ws} {threshold}"
+    );
+    let got = num(&r["threshold"]);
+    assert!(
+        (got - threshold).abs() <= 1e-8 * threshold,
+        "{got} against {threshold}"
+    );
+    assert!((num(&r["frequency"]).abs() - ws).abs() <= 1e-6 * ws, "{r}");
 }

@@ -117,6 +117,41 @@ pub fn campbell_kept(
     control.expect(super::stability::work(speeds.len()) + CRITICAL_WORK);
     let mut tracker = Tracker::new(2 * model.rotor_dofs());
     let summaries = sweep(model, speeds, control, |set| tracker.push(set))?;
+    let (branches, overdamped, ambiguities) =
+        branches_of(tracker, model.layout == Layout::Doubled, keep);
+    let curves: Vec<criticals::Curve> = branches
+        .iter()
+        .map(|b| criticals::Curve {
+            mode: b.mode,
+            poles: &b.poles,
+            whirl_ratio: &b.whirl_ratio,
+        })
+        .collect();
+    let criticals = criticals::criticals(model, speeds, &curves, control)?;
+    control.advance(CRITICAL_WORK);
+    let critical_speeds = forward_criticals(&criticals);
+    let threshold = threshold(model, &summaries, control)?;
+    control.advance(super::stability::work(0));
+    Ok(CampbellResult {
+        speeds: speeds.to_vec(),
+        branches,
+        overdamped,
+        criticals,
+        critical_speeds,
+        threshold,
+        reduction: None,
+        ambiguities,
+    })
+}
+
+/// The tracker's branches as a Campbell diagram reports them: oscillating ones numbered by mode
+/// and kept as `keep` asks, the overdamped ones apart, and the ambiguous hand-overs between
+/// the branches kept.
+pub(super) fn branches_of(
+    tracker: Tracker,
+    doubled: bool,
+    keep: Keep,
+) -> (Vec<Branch>, Vec<Branch>, Vec<Ambiguity>) {
     let (tracks, ambiguities) = tracker.finish();
     let mut all: Vec<(Branch, usize)> = vec![];
     let mut overdamped = vec![];
@@ -144,7 +179,6 @@ pub fn campbell_kept(
             overdamped.push(b);
         }
     }
-    let doubled = model.layout == Layout::Doubled;
     number_modes(&mut all, doubled);
     // Ambiguities between reported branches, in their indices.
     let mut kept = keep_branches(all, keep);
@@ -165,29 +199,7 @@ pub fn campbell_kept(
         let first = |b: &Branch| b.poles.iter().flatten().next().map_or(0.0, |s| s.re);
         first(b).total_cmp(&first(a))
     });
-    let curves: Vec<criticals::Curve> = branches
-        .iter()
-        .map(|b| criticals::Curve {
-            mode: b.mode,
-            poles: &b.poles,
-            whirl_ratio: &b.whirl_ratio,
-        })
-        .collect();
-    let criticals = criticals::criticals(model, speeds, &curves, control)?;
-    control.advance(CRITICAL_WORK);
-    let critical_speeds = forward_criticals(&criticals);
-    let threshold = threshold(model, &summaries, control)?;
-    control.advance(super::stability::work(0));
-    Ok(CampbellResult {
-        speeds: speeds.to_vec(),
-        branches,
-        overdamped,
-        criticals,
-        critical_speeds,
-        threshold,
-        reduction: None,
-        ambiguities,
-    })
+    (branches, overdamped, ambiguities)
 }
 
 /// The speeds of the forward crossings that are not critically damped, ascending.

@@ -3,6 +3,7 @@
 
 pub mod audit;
 pub mod campbell;
+pub mod campbell_whirl;
 pub mod consistent;
 pub mod control;
 pub mod criticals;

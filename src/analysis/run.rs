@@ -18,6 +18,7 @@ use super::audit::peaks::{self, Peak};
 use super::audit::placement;
 use super::audit::statics::{self, Held, StaticResult};
 use super::campbell::{self, CampbellResult};
+use super::campbell_whirl;
 use super::control::Control;
 use super::criticals::Critical;
 use super::modal::{self, ModalResult};
@@ -199,6 +200,22 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
         } => {
             let speeds = speeds.as_slice();
             let system = assemble(model)?;
+            if system.frequency_dependent() {
+                let keep = campbell::Keep {
+                    below: *max_frequency,
+                    lowest: *modes,
+                };
+                return campbell_whirl::campbell_consistent(
+                    &system,
+                    &model.damping,
+                    speeds,
+                    keep,
+                    *sparse,
+                    control,
+                )
+                .map(Outcome::Campbell)
+                .map_err(|e| rigid_body(e, &model.rotor));
+            }
             if *sparse {
                 let keep = campbell::Keep {
                     below: *max_frequency,
@@ -279,9 +296,17 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                     held: Some((bound, Box::new(r))),
                 });
             }
-            let (_, damped) = build(model)?;
-            let (threshold, max_decay_rate) =
-                stability::stability_curve(&damped, speeds.as_slice(), control)?;
+            let system = assemble(model)?;
+            let (threshold, max_decay_rate) = if system.frequency_dependent() {
+                let at =
+                    campbell_whirl::consistent_poles(&system, &model.damping, f64::INFINITY, false);
+                stability::curve_of(&at, speeds.as_slice(), control)
+                    .map_err(|e| rigid_body(e, &model.rotor))?
+            } else {
+                let damped = DampedModel::build(&system, &model.damping)
+                    .map_err(|e| damping_error(e, &model.rotor))?;
+                stability::stability_curve(&damped, speeds.as_slice(), control)?
+            };
             Ok(Outcome::Stability {
                 threshold,
                 speeds: speeds.as_slice().to_vec(),

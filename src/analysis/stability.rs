@@ -13,7 +13,6 @@ use super::AnalysisError;
 use super::control::Control;
 use super::poles::{Pole, PoleSet, poles_at};
 use crate::damping::DampedModel;
-use crate::linalg::LinalgError;
 use crate::model::limits::BATCH_PER_THREAD;
 use rayon::prelude::*;
 
@@ -58,15 +57,15 @@ pub fn sweep(
     control: &Control,
     visit: impl FnMut(&PoleSet),
 ) -> Result<Vec<Summary>, AnalysisError> {
-    sweep_of(&|w| poles_at(model, w), speeds, control, visit)
+    sweep_of(&|w| Ok(poles_at(model, w)?), speeds, control, visit)
 }
 
 /// The poles a search reads at a speed: a model's every pole, or those of a bounded one.
-pub trait Poles: Fn(f64) -> Result<PoleSet, LinalgError> + Sync {}
-impl<F: Fn(f64) -> Result<PoleSet, LinalgError> + Sync> Poles for F {}
+pub trait Poles: Fn(f64) -> Result<PoleSet, AnalysisError> + Sync {}
+impl<F: Fn(f64) -> Result<PoleSet, AnalysisError> + Sync> Poles for F {}
 
 /// [`sweep`] of the poles `at` gives.
-fn sweep_of(
+pub fn sweep_of(
     at: &impl Poles,
     speeds: &[f64],
     control: &Control,
@@ -115,7 +114,7 @@ pub fn stability_curve(
     speeds: &[f64],
     control: &Control,
 ) -> Result<(Option<Threshold>, Vec<f64>), AnalysisError> {
-    curve_of(&|w| poles_at(model, w), speeds, control)
+    curve_of(&|w| Ok(poles_at(model, w)?), speeds, control)
 }
 
 /// [`stability_curve`] of the poles `at` gives.
@@ -137,11 +136,11 @@ pub fn threshold(
     grid: &[Summary],
     control: &Control,
 ) -> Result<Option<Threshold>, AnalysisError> {
-    threshold_of(&|w| poles_at(model, w), grid, control)
+    threshold_of(&|w| Ok(poles_at(model, w)?), grid, control)
 }
 
 /// [`threshold`] of the poles `at` gives.
-fn threshold_of(
+pub fn threshold_of(
     poles_at: &impl Poles,
     grid: &[Summary],
     control: &Control,

@@ -49,11 +49,11 @@ pub fn stability_large(
     let (reduced, reduction) =
         super::large::reduce_for_sweep(system, damping, dampers, speeds, bound, max_states)?;
     let at = |w: f64| {
-        poles_at(&reduced, w).map(|mut set| {
+        Ok(poles_at(&reduced, w).map(|mut set| {
             set.rotor.retain(|p| in_box(p.s, bound));
             set.internal.retain(|p| in_box(p.s, bound));
             set
-        })
+        })?)
     };
     let (threshold, max_decay_rate) = curve_of(&at, speeds, control)?;
     let full = Full::Sparse {

@@ -333,9 +333,10 @@ impl Task {
     }
 
     /// Supports over whirl frequency are read by the analyses built for them (the modal
-    /// analysis, with poles consistent with their own frequency; the harmonic responses, at
-    /// the excitation frequency; the static deflection, at 0) under the viscous and
-    /// hysteretic models; anything else refuses them, naming the first one's `frequencies`.
+    /// analysis, Campbell diagram and stability threshold, with poles consistent with their
+    /// own frequency; the harmonic responses, at the excitation frequency; the static
+    /// deflection, at 0) under the viscous and hysteretic models; anything else refuses them,
+    /// naming the first one's `frequencies`.
     pub(crate) fn whirl_read(&self) -> Result<(), Invalid> {
         let supports: &[crate::model::supports::GeneralSupport] = match &self.kind {
             TaskKind::CriticalMap { rotor, .. } => rotor.general_supports(),
@@ -346,17 +347,22 @@ impl Task {
             return Ok(());
         };
         let path = format!("{}.frequencies", first.path());
-        let read = matches!(
-            self.kind,
-            TaskKind::Modal { .. } | TaskKind::Unbalance { .. } | TaskKind::Frequency { .. }
-        );
+        let read = match &self.kind {
+            TaskKind::Modal { .. }
+            | TaskKind::Campbell { .. }
+            | TaskKind::Unbalance { .. }
+            | TaskKind::Frequency { .. } => true,
+            // Held sparse, a threshold is searched on a reduction built once.
+            TaskKind::Stability { held, .. } => held.is_none(),
+            _ => false,
+        };
         if !read {
             return Err(Invalid::one(
                 path,
                 format!(
                     "a support whose coefficients depend on the whirl frequency is read by \
-                     `modal`, `unbalance-response`, `frequency-response` and `static` so far, \
-                     not by `{}`",
+                     `modal`, `campbell`, `stability` (not held sparse), `unbalance-response`, \
+                     `frequency-response` and `static` so far, not by `{}`",
                     self.name()
                 ),
             ));
