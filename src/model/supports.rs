@@ -12,6 +12,10 @@
 //! each coefficient is instead ROSS 2.3.0's curve through its column ([`Curve::ross`]: scipy's
 //! `interp1d` for 2-3 points, else its smoothing spline), extrapolated beyond the table as ROSS
 //! does; only stiffness and damping may then change with the speed.
+//!
+//! A table over whirl frequency (and speed) is a [`grid::Grid`]: read at `|w|` wherever the
+//! motion's frequency is known (a pole's own, a harmonic response's, 0 for a static load), and
+//! at `w` = the speed where one value per speed is asked for ([`GeneralSupport::at`]).
 
 mod general;
 pub mod grid;
