@@ -191,10 +191,7 @@ pub fn modal_consistent(
     for c in &kept {
         pairs.push((c.s, c.shape.clone()));
         if doubled {
-            let h = c.shape.len() / 2;
-            let (a, b) = c.shape.split_at(h);
-            let mirror = b.iter().chain(a).map(|z| z.conj()).collect();
-            pairs.push((c.s.conj(), mirror));
+            pairs.push((c.s.conj(), super::poles::mirror_shape(&c.shape)));
         }
     }
     let poles = rotor_set(speed, pairs, doubled);

@@ -62,8 +62,6 @@ impl Pole {
     /// The other member of a mirror pair in doubled coordinates: `conj s` with the shape
     /// `(conj b, conj a)` (module docs); the whirl ratio is that of the mode, the same.
     pub fn mirror(&self) -> Pole {
-        let h = self.shape.len() / 2;
-        let (a, b) = self.shape.split_at(h);
         let s = self.s.conj();
         Pole {
             s,
@@ -72,10 +70,16 @@ impl Pole {
             } else {
                 Whirl::Backward
             },
-            shape: b.iter().chain(a).map(|z| z.conj()).collect(),
+            shape: mirror_shape(&self.shape),
             whirl_ratio: self.whirl_ratio,
         }
     }
+}
+
+/// The shape `(conj b, conj a)` of the mirror of a doubled shape `(a, b)`.
+pub fn mirror_shape(shape: &[c64]) -> Vec<c64> {
+    let (a, b) = shape.split_at(shape.len() / 2);
+    b.iter().chain(a).map(|z| z.conj()).collect()
 }
 
 /// Below this `|omega| / |s|` a pole does not oscillate: an overdamped (real) pole, whose

@@ -423,7 +423,7 @@ impl At<'_> {
                 let read;
                 let parts = match system.frequency_dependent() {
                     true => {
-                        read = large::parts_of(&system.read(*speed, l), *hysteretic, *speed);
+                        read = large::parts_read(system, *hysteretic, *speed, Some(l));
                         &read
                     }
                     false => parts,

@@ -67,6 +67,12 @@ pub fn parts(system: &RotorSystem, damping: &DampingModel, speed: f64) -> Option
 
 /// The matrices at `speed` of the viscous model, or of the `hysteretic` one.
 pub fn parts_of(system: &RotorSystem, hysteretic: bool, speed: f64) -> Parts {
+    parts_read(system, hysteretic, speed, None)
+}
+
+/// [`parts_of`] with supports over whirl frequency read at `whirl` (rad/s, either sign) where
+/// given, else synchronously.
+pub fn parts_read(system: &RotorSystem, hysteretic: bool, speed: f64, whirl: Option<f64>) -> Parts {
     let layout = system.layout();
     let n = system.n();
     let size = match layout {
@@ -114,7 +120,10 @@ pub fn parts_of(system: &RotorSystem, hysteretic: bool, speed: f64) -> Parts {
         blocks(&mut loss_r, &system.hysteretic_rotating, &|_| real(1.0));
     }
     for p in &system.supports {
-        let c = p.support.at(speed);
+        let c = match whirl {
+            Some(l) => p.support.at_whirl(speed, l),
+            None => p.support.at(speed),
+        };
         let w = p.at.weights();
         support(&mut k, &w, &c.k);
         support(&mut d, &w, &c.c);
