@@ -116,14 +116,7 @@ async fn a_frequency_response_reads_the_support_at_the_excitation_frequency() {
 #[tokio::test]
 async fn tables_over_whirl_frequency_are_refused_where_not_yet_read() {
     let rotor = one_mass(false);
-    for (uri, extra) in [
-        ("/v1/level1", json!({"speed": 100.0, "node": 0})),
-        (
-            "/v1/time-response",
-            json!({"speed": 100.0, "duration": 0.01, "output_interval": 0.001,
-                   "nodes": [0]}),
-        ),
-    ] {
+    for (uri, extra) in [("/v1/level1", json!({"speed": 100.0, "node": 0}))] {
         let mut body = json!({"rotor": rotor, "damping": {"model": "viscous"}});
         for (k, v) in extra.as_object().unwrap() {
             body[k] = v.clone();

@@ -31,6 +31,7 @@ use super::time::{self, TimeError, TimeResult};
 use super::unbalance::{Orbit, SteadyUnbalance};
 use crate::damping::DampedModel;
 use crate::damping::report::{self, ModelMatrices, ReportError};
+use crate::damping::whirl_fit::SupportFit;
 use crate::model::task::{MAX_CASES, ReportPlan, Task, TaskKind};
 use crate::model::{Invalid, rotor::Rotor};
 
@@ -49,8 +50,14 @@ pub enum Outcome {
     Damping {
         matrices: Box<ModelMatrices>,
         model: &'static str,
+        /// The fits of the supports over whirl frequency.
+        fits: Vec<SupportFit>,
     },
-    Time(TimeResult, Option<crate::analysis::reduction::Reduction>),
+    Time(
+        TimeResult,
+        Option<crate::analysis::reduction::Reduction>,
+        Vec<SupportFit>,
+    ),
     Unbalance {
         speeds: Vec<f64>,
         nodes: Vec<usize>,
@@ -322,7 +329,7 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
             max_states,
             speed,
         } => {
-            let system = assemble(model)?;
+            let (system, fits) = models::fitted(model)?;
             let options = report::Options {
                 state_form: *state_form,
                 band: *band,
@@ -343,6 +350,7 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
             Ok(Outcome::Damping {
                 matrices: Box::new(r),
                 model: model.damping.name(),
+                fits,
             })
         }
         TaskKind::Time {
@@ -350,7 +358,7 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
             spec,
             sparse,
         } => {
-            let system = assemble(model)?;
+            let (system, fits) = models::fitted(model)?;
             let reduced = time::reduced::solve_sparse(
                 &system,
                 &model.damping,
@@ -360,7 +368,7 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                 control,
             )?;
             if let Some((r, reduction)) = reduced {
-                return Ok(Outcome::Time(r, Some(reduction)));
+                return Ok(Outcome::Time(r, Some(reduction), fits));
             }
             if *sparse {
                 return Err(RunError::Unsolvable(NOT_REDUCED.into()));
@@ -369,7 +377,7 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                 .map_err(|e| damping_error(e, &model.rotor))?;
             let (r, reduction) =
                 time::reduced::solve(&system, &model.damping, &damped, spec, spec.reduce, control)?;
-            Ok(Outcome::Time(r, reduction))
+            Ok(Outcome::Time(r, reduction, fits))
         }
         TaskKind::Unbalance {
             model,

@@ -8,6 +8,7 @@ use crate::analysis::time::{Method, TimeResult};
 use crate::analysis::unbalance::Orbit;
 use crate::damping::StateModel;
 use crate::damping::report::{Augmented, Coordinate, DamperFit, ModelMatrices};
+use crate::damping::whirl_fit::SupportFit;
 use crate::linalg::{CMat, RMat, c64};
 use crate::model::api;
 use crate::system::{Dof, DofKind};
@@ -362,6 +363,7 @@ pub fn coordinates(c: &[Coordinate]) -> Vec<api::CoordinateOut> {
                 branch: None,
                 rotating: None,
                 relaxation_rate: None,
+                support: None,
             },
             Coordinate::Internal {
                 mode,
@@ -377,6 +379,23 @@ pub fn coordinates(c: &[Coordinate]) -> Vec<api::CoordinateOut> {
                 branch: Some(branch + 1),
                 rotating: Some(*rotating),
                 relaxation_rate: Some(*rate),
+                support: None,
+            },
+            Coordinate::Support {
+                support,
+                branch,
+                conjugate,
+                rate,
+            } => api::CoordinateOut {
+                index,
+                conjugate: conjugate.then_some(true),
+                kind: "support branch".into(),
+                node: None,
+                mode: None,
+                branch: Some(branch + 1),
+                rotating: Some(false),
+                relaxation_rate: Some(*rate),
+                support: Some(support.clone()),
             },
         })
         .collect()
@@ -440,6 +459,21 @@ pub fn damping_matrices(r: &ModelMatrices, model: &str) -> api::DampingMatricesR
         added_states: r.added_states,
         branches_rotating: r.branches.map(|b| b.0),
         branches_nonrotating: r.branches.map(|b| b.1),
+        support_fits: vec![],
+    }
+}
+
+/// A support's Maxwell fit.
+pub fn support_fit(f: &SupportFit) -> api::SupportFitInfo {
+    let [xx, xy, yx, yy] = f.deviation;
+    api::SupportFitInfo {
+        support: f.path.clone(),
+        rates: f.rates.clone(),
+        band: f.band,
+        deviation: api::Matrix2Out { xx, xy, yx, yy },
+        max_deviation: f.max_deviation(),
+        speeds: f.speeds.clone(),
+        shrunk: f.shrunk,
     }
 }
 
@@ -466,6 +500,7 @@ pub fn time_response(r: &TimeResult) -> api::TimeResponseResponse {
         steps: r.steps,
         states: r.states,
         reduction: None,
+        support_fits: vec![],
     }
 }
 

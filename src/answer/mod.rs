@@ -63,12 +63,19 @@ impl Output {
                 }
                 s
             }),
-            Outcome::Damping { matrices, model } => {
-                Output::Damping(Box::new(convert::damping_matrices(&matrices, model)))
-            }
-            Outcome::Time(r, reduction) => {
+            Outcome::Damping {
+                matrices,
+                model,
+                fits,
+            } => Output::Damping(Box::new({
+                let mut d = convert::damping_matrices(&matrices, model);
+                d.support_fits = fits.iter().map(convert::support_fit).collect();
+                d
+            })),
+            Outcome::Time(r, reduction, fits) => {
                 let mut t = convert::time_response(&r);
                 t.reduction = reduction.as_ref().map(convert::reduction);
+                t.support_fits = fits.iter().map(convert::support_fit).collect();
                 Output::Time(t)
             }
             Outcome::Unbalance {

@@ -1,12 +1,13 @@
 //! The dynamic stiffness of a linear model, for harmonic solves without the state matrix.
 //!
-//! At `x = X e^{sigma t}` the model of `state.rs` (`M x'' + D x' + K x - U k y = F`, each
-//! branch `y_j' = (-d_j + i Omega rho_j) y_j + d_j u_j^H x`) has
+//! At `x = X e^{sigma t}` the model of `state.rs` (`M x'' + D x' + K x - W y = F`, each
+//! branch `y_j' = (-d_j + i Omega rho_j) y_j + d_j u_j^H x`, `W = U diag(k)` but for a
+//! support's branches) has
 //! `y_j = d_j / (sigma + d_j - i Omega rho_j) u_j^H X`, so one system of the rotor's size is left:
 //!
 //! ```text
-//! Z(sigma) X = F,   Z = sigma^2 M + sigma D(Omega) + K(Omega) + U diag(nu k) U^H
-//!                       - U diag(k_j d_j / (sigma + d_j - i Omega rho_j)) U^H
+//! Z(sigma) X = F,   Z = sigma^2 M + sigma D(Omega) + K(Omega) + W_nu U^H
+//!                       - W diag(d_j / (sigma + d_j - i Omega rho_j)) U^H
 //! ```
 //!
 //! Solved as it stands, never through `M^-1`: the first-order system `(sigma - A) z = B f`
@@ -25,14 +26,13 @@ pub struct Physical {
     pub(super) mass: CMat,
     pub(super) d0: CMat,
     pub(super) d1: CMat,
-    /// `K0 + U diag(nu k) U^H`.
+    /// `K0 + W_nu U^H`.
     pub(super) k0: CMat,
     pub(super) k1: CMat,
-    /// The branches' `U`, `U^H`, `k_j`, `d_j` and `rho_j` (`state::Branches`, copied: this
-    /// module does not import `state`, which holds a `Physical`).
-    pub(super) u: CMat,
+    /// The branches' `U^H`, `W`, `d_j` and `rho_j` (`state::Branches`, copied: this module
+    /// does not import `state`, which holds a `Physical`).
     pub(super) uh: CMat,
-    pub(super) stiffness: Vec<f64>,
+    pub(super) load: CMat,
     pub(super) rate: Vec<f64>,
     pub(super) spin: Vec<f64>,
 }
@@ -48,14 +48,14 @@ impl Physical {
                 + self.k0[(i, j)]
                 + self.k1[(i, j)] * speed
         });
-        if !self.stiffness.is_empty() {
-            let w: Vec<c64> = (0..self.stiffness.len())
+        if !self.rate.is_empty() {
+            let w: Vec<c64> = (0..self.rate.len())
                 .map(|j| {
                     let den = sigma + self.rate[j] - c64::new(0.0, speed * self.spin[j]);
-                    c64::new(-self.stiffness[j] * self.rate[j], 0.0) / den
+                    c64::new(-self.rate[j], 0.0) / den
                 })
                 .collect();
-            z += linalg::scaled_product(&self.u, &w, &self.uh);
+            z += linalg::scaled_product(&self.load, &w, &self.uh);
         }
         z
     }
@@ -65,14 +65,14 @@ impl Physical {
 /// never forming `A` or `M^-1`. From `(A - sigma I) [v, x, y] = [b1, b2, b3]`: `v = b2 + sigma x`,
 /// `y_j = (b3_j - d_j u_j^H x) / (a_j - sigma)` with `a_j = -d_j + i Omega rho_j`, and the first
 /// row multiplied by `-M` leaves
-/// `Z(sigma) x = -M b1 - (sigma M + D) b2 + U diag(k_j / (a_j - sigma)) b3`.
+/// `Z(sigma) x = -M b1 - (sigma M + D) b2 + W diag(1 / (a_j - sigma)) b3`.
 pub struct ShiftInvert {
     sigma: c64,
     /// The model's matrices (its `M`), shared, not copied.
     phys: Arc<Physical>,
     /// `sigma M + D(Omega)`.
     damping: CMat,
-    /// `U diag(k)`, `U^H diag(d)` rows and `1 / (a_j - sigma)`.
+    /// `W` (`U diag(k)`), `U^H diag(d)` rows and `1 / (a_j - sigma)`.
     uk: CMat,
     dyx: CMat,
     dyy: Vec<c64>,
@@ -81,12 +81,11 @@ pub struct ShiftInvert {
 
 impl Physical {
     /// `A0`, `A1` from the second-order form: one solve with `M` for
-    /// `[D0 | K0 + U nu k U^H | U k | D1 | K1]`.
+    /// `[D0 | K0 + W_nu U^H | W | D1 | K1]`.
     pub fn state_matrices(&self) -> Result<(CMat, CMat), LinalgError> {
         let n = self.mass.nrows();
-        let p = self.stiffness.len();
+        let p = self.rate.len();
         let size = 2 * n + p;
-        let u = &self.u;
         let mut rhs = CMat::zeros(n, 4 * n + p);
         for r in 0..n {
             for c in 0..n {
@@ -96,7 +95,7 @@ impl Physical {
                 rhs[(r, 3 * n + p + c)] = self.k1[(r, c)];
             }
             for j in 0..p {
-                rhs[(r, 2 * n + j)] = u[(r, j)] * self.stiffness[j];
+                rhs[(r, 2 * n + j)] = self.load[(r, j)];
             }
         }
         let sol = linalg::mass_solve(&self.mass, &rhs)?;
@@ -128,7 +127,7 @@ impl Physical {
     /// `(A(speed) - sigma I)^-1`, one factor of `Z(sigma)`.
     pub fn shift_invert(self: &Arc<Self>, speed: f64, sigma: c64) -> ShiftInvert {
         let n = self.mass.nrows();
-        let p = self.stiffness.len();
+        let p = self.rate.len();
         let damping = CMat::from_fn(n, n, |i, j| {
             self.mass[(i, j)] * sigma + self.d0[(i, j)] + self.d1[(i, j)] * speed
         });
@@ -142,7 +141,7 @@ impl Physical {
             sigma,
             phys: self.clone(),
             damping,
-            uk: CMat::from_fn(n, p, |i, j| self.u[(i, j)] * self.stiffness[j]),
+            uk: self.load.clone(),
             dyx: CMat::from_fn(p, n, |j, c| self.uh[(j, c)] * self.rate[j]),
             dyy,
             lu: linalg::ComplexLu::new(&self.dynamic_stiffness(speed, sigma)),

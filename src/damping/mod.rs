@@ -23,6 +23,7 @@ pub mod nonviscous;
 pub mod report;
 pub mod schedule;
 pub mod state;
+pub mod whirl_fit;
 
 use crate::fem::modal::{HermitianBasis, ModalBasis, ModalError};
 use crate::linalg::{CMat, LinalgError, RMat, Sparse};
@@ -249,10 +250,14 @@ impl DampedModel {
                 None => m,
             };
             let bases = || bases.expect("the equivalent and nonviscous models have a basis");
-            // Constant coefficients keep the second-order matrices for harmonic solves.
-            let state = |so: &SecondOrder, br: &Branches| match scheduled || points.len() > 1 {
-                true => StateModel::new(so, br),
-                false => StateModel::harmonic(so, br),
+            // Constant coefficients keep the second-order matrices for harmonic solves. The
+            // supports' own branches (a table over whirl frequency, fitted) join the model's.
+            let state = |r: &Realized, so: &SecondOrder, br: &Branches| {
+                let br = br.with_supports(&r.branches);
+                match scheduled || points.len() > 1 {
+                    true => StateModel::new(so, &br),
+                    false => StateModel::harmonic(so, &br),
+                }
             };
             let linear = |models: Result<Vec<StateModel>, _>| -> Result<ModelKind, DampingError> {
                 Ok(ModelKind::Linear(Box::new(on_schedule(tabulate(models?)))))
@@ -261,9 +266,16 @@ impl DampedModel {
                 DampingModel::Viscous => linear(
                     realized
                         .iter()
-                        .map(|r| state(&SecondOrder::viscous(r), &Branches::none(size)))
+                        .map(|r| state(r, &SecondOrder::viscous(r), &Branches::none(size)))
                         .collect(),
                 ),
+                DampingModel::Hysteretic if !realized[0].branches.is_empty() => {
+                    Err(DampingError::Unsolvable(
+                        "the hysteretic model is defined for harmonic motion only: a support's \
+                         table over whirl frequency is read as it stands there, not fitted"
+                            .into(),
+                    ))
+                }
                 DampingModel::Hysteretic => {
                     let per_point: Vec<Vec<hysteretic::SignedModel>> = realized
                         .iter()
@@ -297,6 +309,7 @@ impl DampedModel {
                                     rotating,
                                     nonrotating,
                                 } => state(
+                                    r,
                                     &SecondOrder::with_damping(
                                         r,
                                         &(&r.damping_nonrotating + nonrotating),
@@ -304,7 +317,9 @@ impl DampedModel {
                                     ),
                                     &Branches::none(size),
                                 ),
-                                dampers::Damping::Branches(b) => state(&SecondOrder::viscous(r), b),
+                                dampers::Damping::Branches(b) => {
+                                    state(r, &SecondOrder::viscous(r), b)
+                                }
                             })
                             .collect(),
                     )
@@ -315,7 +330,7 @@ impl DampedModel {
                         .map(|r| {
                             let so =
                                 equivalent::second_order(r, &system.hysteretic_rotating, bases());
-                            state(&so, &Branches::none(size))
+                            state(r, &so, &Branches::none(size))
                         })
                         .collect(),
                 ),
@@ -327,7 +342,7 @@ impl DampedModel {
                         realized
                             .iter()
                             .zip(&branches)
-                            .map(|(r, br)| state(&SecondOrder::viscous(r), br))
+                            .map(|(r, br)| state(r, &SecondOrder::viscous(r), br))
                             .collect(),
                     )
                 }

@@ -149,6 +149,8 @@ pub fn matrices(
         c_r = &c_r + &eq_r;
         equivalent = Some((eq_r, eq_n));
     }
+    // A support's table over whirl frequency, fitted: its branches after the model's.
+    let branches = branches.with_supports(&r.branches);
     let states = 2 * r.size() + branches.len();
     if states > options.max_states {
         return Err(ReportError::TooLarge {
@@ -168,7 +170,7 @@ pub fn matrices(
     } else {
         None
     };
-    let aug = augmented(&r, &system.dofs, &c_n, &c_r, &branches);
+    let aug = augmented(&r, system, &c_n, &c_r, &branches);
     let finite = |a: &CMat| {
         (0..a.nrows())
             .all(|i| (0..a.ncols()).all(|j| a[(i, j)].re.is_finite() && a[(i, j)].im.is_finite()))
@@ -247,6 +249,17 @@ pub enum Coordinate {
         /// Relaxation rate `d_j`, 1/s.
         rate: f64,
     },
+    /// A branch fitted to a support's table over whirl frequency.
+    Support {
+        /// Its path in the request.
+        support: String,
+        /// Branch index (0-based).
+        branch: usize,
+        /// The `conj r` copy (doubled coordinates).
+        conjugate: bool,
+        /// Relaxation rate `d_j`, 1/s.
+        rate: f64,
+    },
 }
 
 /// The rotor with its nonviscous branches, in second-order form:
@@ -263,8 +276,16 @@ pub struct Augmented {
     pub coordinates: Vec<Coordinate>,
 }
 
-/// Appends the branches' internal coordinates to the viscous rotor `(r, c_n, c_r)`.
-pub fn augmented(r: &Realized, dofs: &[Dof], c_n: &CMat, c_r: &CMat, br: &Branches) -> Augmented {
+/// Appends the branches' internal coordinates to the viscous rotor `(r, c_n, c_r)`, the
+/// supports' own (`r.branches`, of `system`'s supports) last.
+pub fn augmented(
+    r: &Realized,
+    system: &RotorSystem,
+    c_n: &CMat,
+    c_r: &CMat,
+    br: &Branches,
+) -> Augmented {
+    let dofs = &system.dofs;
     let (n, p) = (r.size(), br.len());
     let zero = linalg::c64::new(0.0, 0.0);
     let pad = |a: &CMat| {
@@ -278,14 +299,15 @@ pub fn augmented(r: &Realized, dofs: &[Dof], c_n: &CMat, c_r: &CMat, br: &Branch
     let mut c_r = pad(c_r);
     let mut c_n = pad(c_n);
     let mut spin = r.spin.clone();
+    // `W` and `W_nu` (`U diag(k)`, `U diag(nu k)` but for a support's branches).
+    let (load, main) = (br.load(), br.main_load());
     for j in 0..p {
         let (k, y) = (br.stiffness[j], n + j);
         for row in 0..n {
             for c in 0..n {
-                stiffness[(row, c)] +=
-                    br.coupling[(row, j)] * br.main_stiffness[j] * br.coupling[(c, j)].conj();
+                stiffness[(row, c)] += main[(row, j)] * br.coupling[(c, j)].conj();
             }
-            stiffness[(row, y)] = -br.coupling[(row, j)] * k;
+            stiffness[(row, y)] = -load[(row, j)];
             stiffness[(y, row)] = -br.coupling[(row, j)].conj() * k;
         }
         stiffness[(y, y)] = linalg::c64::new(k, 0.0);
@@ -303,11 +325,23 @@ pub fn augmented(r: &Realized, dofs: &[Dof], c_n: &CMat, c_r: &CMat, br: &Branch
             conjugate: i >= dofs.len(),
         })
         .collect();
-    coordinates.extend((0..p).map(|j| Coordinate::Internal {
-        mode: br.mode[j],
-        branch: br.index[j],
-        rotating: br.rotating(j),
-        rate: br.rate[j],
+    let own = p - r.branches.len();
+    coordinates.extend((0..p).map(|j| match j < own {
+        true => Coordinate::Internal {
+            mode: br.mode[j],
+            branch: br.index[j],
+            rotating: br.rotating(j),
+            rate: br.rate[j],
+        },
+        false => {
+            let (s, branch, conjugate) = r.branches.of[j - own];
+            Coordinate::Support {
+                support: system.supports[s].support.path(),
+                branch,
+                conjugate,
+                rate: br.rate[j],
+            }
+        }
     }));
     Augmented {
         mass: pad(&r.mass),

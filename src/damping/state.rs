@@ -8,6 +8,8 @@
 //!                                   y' = (-d + i Omega rho) y + d (U^H x)
 //! ```
 //!
+//! (`U diag(k)` is `W`, `U diag(nu k)` is `W_nu` in general: a support's branches, fitted to a
+//! table over whirl frequency, push along `w_j` other than `u_j`, `system::SupportBranches`.)
 //! The second line is the Maxwell branch `c_j (y_j' - i Omega rho_j y_j) + k_j (y_j - u_j^H x) = 0`
 //! divided by `c_j = k_j / d_j` (`rho_j = 1` for a rotating branch on `r`, -1 for one on
 //! `conj r` in doubled coordinates, 0 for a nonrotating one; `U` is real in the coordinates
@@ -18,7 +20,7 @@
 use super::harmonic::{self, Physical};
 use super::schedule::Schedule;
 use crate::linalg::{self, CMat, LinalgError, RMat, c64};
-use crate::system::Realized;
+use crate::system::{Realized, SupportBranches};
 use std::sync::{Arc, OnceLock};
 
 /// `M x'' + (D0 + Omega D1) x' + (K0 + Omega K1) x = F`, complex coefficients.
@@ -103,6 +105,10 @@ pub struct Branches {
     pub mode: Vec<usize>,
     /// Index j (0-based) of the branch within its damper.
     pub index: Vec<usize>,
+    /// `(W, W_nu)` where they are not `(U diag(k), U diag(nu k))`: with a support's branches,
+    /// whose force is along its own column (then `k_j` is that column's largest entry, a
+    /// scale for the branch's energy).
+    pub loads: Option<(CMat, CMat)>,
 }
 
 impl Branches {
@@ -116,7 +122,59 @@ impl Branches {
             spin: vec![],
             mode: vec![],
             index: vec![],
+            loads: None,
         }
+    }
+
+    /// `W`: column `j` is the direction branch `j` pushes the rotor along, times its stiffness.
+    pub fn load(&self) -> CMat {
+        match &self.loads {
+            Some((w, _)) => w.clone(),
+            None => self.scaled(&self.stiffness),
+        }
+    }
+
+    /// `W_nu`: the stiffness each branch adds on its own coordinate, `W_nu U^H`.
+    pub fn main_load(&self) -> CMat {
+        match &self.loads {
+            Some((_, w)) => w.clone(),
+            None => self.scaled(&self.main_stiffness),
+        }
+    }
+
+    /// `U diag(k)`.
+    fn scaled(&self, k: &[f64]) -> CMat {
+        let u = &self.coupling;
+        CMat::from_fn(u.nrows(), u.ncols(), |i, j| u[(i, j)] * k[j])
+    }
+
+    /// These branches and the supports' ([`SupportBranches`]) after them. A support's branch is
+    /// nonrotating, its own damper (`mode` is its support, `index` its branch).
+    pub fn with_supports(&self, s: &SupportBranches) -> Branches {
+        if s.is_empty() {
+            return self.clone();
+        }
+        let (n, p, q) = (self.coupling.nrows(), self.len(), s.len());
+        let join = |a: &CMat, b: &CMat| {
+            CMat::from_fn(
+                n,
+                p + q,
+                |i, j| if j < p { a[(i, j)] } else { b[(i, j - p)] },
+            )
+        };
+        let scale: Vec<f64> = (0..q)
+            .map(|j| (0..n).map(|i| s.w[(i, j)].norm()).fold(0.0, f64::max))
+            .collect();
+        let mut out = self.clone();
+        out.coupling = join(&self.coupling, &s.u);
+        out.loads = Some((join(&self.load(), &s.w), join(&self.main_load(), &s.w)));
+        out.stiffness.extend(&scale);
+        out.main_stiffness.extend(&scale);
+        out.rate.extend(&s.rate);
+        out.spin.extend(std::iter::repeat_n(0.0, q));
+        out.mode.extend(s.of.iter().map(|o| o.0));
+        out.index.extend(s.of.iter().map(|o| o.1));
+        out
     }
 
     pub fn len(&self) -> usize {
@@ -201,20 +259,19 @@ impl StateModel {
 
     /// The model with its second-order form and no state matrix yet.
     fn kept(so: &SecondOrder, br: &Branches) -> Self {
-        // U diag(nu k) U^H, a product of n x p factors (p reaches 6n with nonviscous damping).
+        // W_nu U^H, a product of n x p factors (p reaches 6n with nonviscous damping).
         let u = &br.coupling;
         let uh = u.adjoint().to_owned();
-        let nu_k: Vec<c64> = br.main_stiffness.iter().map(|&k| real(k)).collect();
-        let kadd = linalg::scaled_product(u, &nu_k, &uh);
+        let ones = vec![real(1.0); br.len()];
+        let kadd = linalg::scaled_product(&br.main_load(), &ones, &uh);
         let physical = Physical {
             mass: so.mass.clone(),
             d0: so.d0.clone(),
             d1: so.d1.clone(),
             k0: &so.k0 + &kadd,
             k1: so.k1.clone(),
-            u: u.clone(),
             uh,
-            stiffness: br.stiffness.clone(),
+            load: br.load(),
             rate: br.rate.clone(),
             spin: br.spin.clone(),
         };

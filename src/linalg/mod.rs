@@ -13,10 +13,12 @@ pub mod arnoldi;
 mod general;
 mod gram;
 pub mod lanczos;
+mod lstsq;
 pub mod sparse;
 
 pub use general::{Eigen, balance, eigen, eigen_real, eigenvalues};
 pub use gram::m_orthonormal_extend;
+pub use lstsq::{bounded_least_squares, least_squares};
 pub use sparse::Sparse;
 
 use faer::linalg::solvers::Solve;

@@ -17,6 +17,7 @@
 //! motion's frequency is known (a pole's own, a harmonic response's, 0 for a static load), and
 //! at `w` = the speed where one value per speed is asked for ([`GeneralSupport::at`]).
 
+pub mod fitted;
 mod general;
 pub mod grid;
 
@@ -144,6 +145,9 @@ pub struct GeneralSupport {
     pub law: Law,
     /// Its hysteretic stiffness is `loss_factor` times the symmetric part of `K`.
     pub loss_factor: f64,
+    /// Maxwell branches beside its law: a table over whirl frequency fitted for the time
+    /// domain (`fitted.rs`), none as parsed.
+    pub branches: Option<Box<fitted::Fitted>>,
 }
 
 impl GeneralSupport {

@@ -25,7 +25,7 @@ use crate::linalg::Sparse;
 use crate::model::rotor::Jeffcott;
 use crate::model::supports::GeneralSupport;
 
-pub use realize::{Layout, Realized, point_action};
+pub use realize::{Layout, Realized, SupportBranches, point_action};
 
 /// What a degree of freedom of the assembled system is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

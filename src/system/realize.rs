@@ -40,6 +40,84 @@ pub struct Realized {
     pub loss_rotating: CMat,
     /// Per row: `+1` for `r`, `-1` for `conj r`: the sign of the terms in the spin speed.
     pub spin: Vec<f64>,
+    /// The supports' Maxwell branches (a table over whirl frequency fitted for the time
+    /// domain); none for the undamped rotor.
+    pub branches: SupportBranches,
+}
+
+/// The supports' Maxwell branches in the layout (`model::supports::fitted`): internal
+/// coordinate `j` follows `y_j' = d_j (u_j^H q - y_j)` and pushes on the rotor with
+/// `-w_j (u_j^H q - y_j)`. In the single layout one per branch, `u_j` the support's weights and
+/// `w_j` those times `g_iso`; doubled, two (on `r` and on `conj r`), `w_j` a column of the
+/// branch's action on both.
+#[derive(Debug, Clone)]
+pub struct SupportBranches {
+    pub u: CMat,
+    pub w: CMat,
+    pub rate: Vec<f64>,
+    /// Per internal coordinate: the support (its position in `supports`), the branch index,
+    /// and whether it is the `conj r` copy.
+    pub of: Vec<(usize, usize, bool)>,
+}
+
+impl SupportBranches {
+    pub fn none(size: usize) -> Self {
+        SupportBranches {
+            u: CMat::zeros(size, 0),
+            w: CMat::zeros(size, 0),
+            rate: vec![],
+            of: vec![],
+        }
+    }
+
+    pub fn len(&self) -> usize {
+        self.rate.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.rate.is_empty()
+    }
+
+    /// The branches of `system`'s supports at `speed`, in `layout`.
+    fn of(system: &RotorSystem, layout: Layout, speed: f64) -> Self {
+        let n = system.n();
+        let size = match layout {
+            Layout::Single => n,
+            Layout::Doubled => 2 * n,
+        };
+        let (mut u_cols, mut w_cols) = (vec![], vec![]);
+        let (mut rate, mut of) = (vec![], vec![]);
+        for (s, p) in system.supports.iter().enumerate() {
+            let Some(f) = &p.support.branches else {
+                continue;
+            };
+            let weights = p.at.weights();
+            for (j, g) in f.at(speed).iter().enumerate() {
+                let a = point_action(g, layout);
+                for b in 0..a.ncols() {
+                    let mut u = vec![c64::new(0.0, 0.0); size];
+                    let mut w = vec![c64::new(0.0, 0.0); size];
+                    for &(i, wi) in &weights {
+                        u[i + b * n] = c64::new(wi, 0.0);
+                        for r in 0..a.nrows() {
+                            w[i + r * n] = a[(r, b)] * wi;
+                        }
+                    }
+                    u_cols.push(u);
+                    w_cols.push(w);
+                    rate.push(f.rates[j]);
+                    of.push((s, j, b == 1));
+                }
+            }
+        }
+        let cols = |c: &[Vec<c64>]| CMat::from_fn(size, c.len(), |i, j| c[j][i]);
+        SupportBranches {
+            u: cols(&u_cols),
+            w: cols(&w_cols),
+            rate,
+            of,
+        }
+    }
 }
 
 /// A real `n x n` matrix on the diagonal block(s) of an `N x N` complex one.
@@ -112,7 +190,10 @@ impl Realized {
 
     /// The rotor with its supports' coefficients at `speed`.
     pub fn at(system: &RotorSystem, speed: f64) -> Self {
-        Self::with(system, system.layout(), |s| s.at(speed))
+        let layout = system.layout();
+        let mut r = Self::with(system, layout, |s| s.at(speed));
+        r.branches = SupportBranches::of(system, layout, speed);
+        r
     }
 
     /// The rotor with each support's coefficients as `coefficients` gives them.
@@ -136,6 +217,10 @@ impl Realized {
                 Layout::Single => vec![1.0; n],
                 Layout::Doubled => (0..2 * n).map(|i| if i < n { 1.0 } else { -1.0 }).collect(),
             },
+            branches: SupportBranches::none(match layout {
+                Layout::Single => n,
+                Layout::Doubled => 2 * n,
+            }),
         };
         add_circulatory(&mut r.stiffness, &system.circulatory, layout);
         for p in &system.supports {
@@ -236,6 +321,7 @@ mod tests {
                         ..Coefficients::default()
                     }),
                     loss_factor: 0.1,
+                    branches: None,
                 },
             }],
         }

@@ -313,6 +313,7 @@ pub fn coupled(system: &RotorSystem, at: &[(Placement, usize, f64)], q: f64) -> 
                         ..Coefficients::default()
                     }),
                     loss_factor: 0.0,
+                    branches: None,
                 },
             });
         }

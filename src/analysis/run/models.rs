@@ -4,6 +4,7 @@
 use super::RunError;
 use crate::analysis::AnalysisError;
 use crate::analysis::response;
+use crate::damping::whirl_fit::{self, FitOptions, SupportFit};
 use crate::damping::{DampedModel, DampingError};
 use crate::fem::modal::ModalError;
 use crate::model::task::Model;
@@ -28,6 +29,16 @@ pub(super) fn damping_error(e: DampingError, rotor: &Rotor) -> RunError {
 pub(super) fn assemble(model: &Model) -> Result<RotorSystem, RunError> {
     RotorSystem::assemble(&model.rotor)
         .map_err(|e| RunError::Unsolvable(format!("the rotor cannot be assembled: {e}")))
+}
+
+/// The rotor assembled with its supports over whirl frequency fitted by Maxwell branches (how
+/// the time domain and the damping matrices read them), and how well each was fitted.
+pub(super) fn fitted(model: &Model) -> Result<(RotorSystem, Vec<SupportFit>), RunError> {
+    let system = assemble(model)?;
+    if !system.frequency_dependent() {
+        return Ok((system, vec![]));
+    }
+    whirl_fit::fit(&system, &FitOptions::default()).map_err(|e| damping_error(e, &model.rotor))
 }
 
 /// Assembles the rotor and builds its damping model.

@@ -95,7 +95,8 @@ pub struct StateMatrices {
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
 pub struct CoordinateOut {
     pub index: usize,
-    /// `translation`, `rotation` or `internal`.
+    /// `translation`, `rotation`, `internal` (a nonviscous damper's branch) or `support
+    /// branch` (a branch fitted to a support's table over whirl frequency).
     pub kind: String,
     /// Doubled coordinates: whether this is the `conj r` copy of a physical coordinate.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -114,6 +115,9 @@ pub struct CoordinateOut {
     /// Relaxation rate d_j, 1/s.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub relaxation_rate: Option<f64>,
+    /// The support a `support branch` is fitted to (its table over whirl frequency).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub support: Option<String>,
 }
 
 /// The loss of one undamped mode and its equivalent viscous damping.
@@ -188,8 +192,46 @@ pub struct DampingMatricesResponse {
     pub branches_rotating: Option<usize>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub branches_nonrotating: Option<usize>,
+    /// The supports over whirl frequency, each fitted by Maxwell branches (their internal
+    /// coordinates follow the model's).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub support_fits: Vec<SupportFitInfo>,
     /// How the model was read where it needed saying: supports held at the ends of their
     /// tables of coefficients outside them.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub warnings: Vec<String>,
+}
+
+/// How a support's table over whirl frequency is carried into the time domain: its dynamic
+/// stiffness `H(w) = K(w) + i w C(w) - w^2 M(w)` replaced by
+/// `K0 + i w C0 - w^2 M0 + sum_j G_j i w / (i w + d_j)` (Maxwell branches, one internal
+/// coordinate each on `r`, and on `conj r` when doubled).
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct SupportFitInfo {
+    /// The support (`rotor.supports[i]` or `rotor.seals[i]`).
+    pub support: String,
+    /// The branches' relaxation rates `d_j`, 1/s.
+    pub rates: Vec<f64>,
+    /// The table's frequencies, first and last (rad/s): where the fit is measured. Past the
+    /// last the fitted support follows its branches (`K0 + sum G_j`, `C0`), not the table's
+    /// straight continuation.
+    pub band: [f64; 2],
+    /// Largest `|H~ - H|` over the band (and the table's speeds) of each coefficient, relative
+    /// to the support's largest direct `|H|` over the band.
+    pub deviation: Matrix2Out,
+    /// The largest of `deviation`.
+    pub max_deviation: f64,
+    /// The speeds the fit was made at (rad/s; linear between them); empty when constant.
+    pub speeds: Vec<f64>,
+    /// Whether a symmetric cross term was shrunk to keep every branch passive.
+    pub shrunk: bool,
+}
+
+/// A 2x2 coefficient matrix by its entries.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, ToSchema)]
+pub struct Matrix2Out {
+    pub xx: f64,
+    pub xy: f64,
+    pub yx: f64,
+    pub yy: f64,
 }

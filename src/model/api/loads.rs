@@ -155,6 +155,10 @@ pub struct TimeResponseResponse {
     /// The modal reduction integrated (varying speed); null when the full model was.
     #[serde(default)]
     pub reduction: Option<ReductionInfo>,
+    /// The supports over whirl frequency, each carried into the time domain by Maxwell
+    /// branches fitted to its table, and how well.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub support_fits: Vec<super::SupportFitInfo>,
     /// How the model was read where it needed saying: supports held at the ends of their
     /// tables of coefficients outside them.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]

@@ -128,6 +128,7 @@ pub fn parse_general(
             link,
             law: Law::Grid(Box::new(g)),
             loss_factor: eta?,
+            branches: None,
         });
     }
     let mut columns: Vec<Vec<f64>> = vec![];
@@ -232,5 +233,6 @@ pub fn parse_general(
         link,
         law,
         loss_factor: eta?,
+        branches: None,
     })
 }

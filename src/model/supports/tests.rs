@@ -49,6 +49,7 @@ fn tables_are_linear_inside_and_held_outside() {
             ross: None,
         },
         loss_factor: 0.0,
+        branches: None,
     };
     assert_eq!(s.at(0.0).k.xx, 1.0);
     assert_eq!(s.at(150.0).k.xx, 2.0);

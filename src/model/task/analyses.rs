@@ -219,16 +219,22 @@ impl DampingMatricesRequest {
         let speed = speed_at(&mut bad, "speed", self.speed.unwrap_or_default());
         let model = Model::parse(&self.rotor, &self.damping, limits, bad)?;
         let speed = speed.expect("validated");
-        if matches!(
-            model.damping,
-            DampingModel::Viscous | DampingModel::Hysteretic
-        ) {
+        // The viscous model adds matrices where a support over whirl frequency is fitted.
+        let fitted = model
+            .rotor
+            .general_supports()
+            .iter()
+            .any(|s| s.frequency_dependent());
+        if matches!(model.damping, DampingModel::Hysteretic)
+            || (matches!(model.damping, DampingModel::Viscous) && !fitted)
+        {
             return Err(Invalid::one(
                 "damping.model",
                 format!(
                     "`{}` adds no matrices: this endpoint returns the `equivalent` or \
-                     `nonviscous` model (hysteretic damping has no time-domain form; nonviscous \
-                     is its time-domain model)",
+                     `nonviscous` model, or the branches fitted to a support over whirl \
+                     frequency (hysteretic damping has no time-domain form; nonviscous is its \
+                     time-domain model)",
                     model.damping.name()
                 ),
             ));

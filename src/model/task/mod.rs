@@ -90,9 +90,16 @@ impl Model {
             _ => (0, 1),
         };
         let general = self.rotor.general_supports();
+        // A table over whirl frequency is fitted by branches in the time domain: at most
+        // `MAX_BRANCHES` each, on `r` (and `conj r`), realized at its speeds.
+        let fitted = general.iter().filter(|s| s.frequency_dependent()).count();
+        let internal = internal + copies * fitted * crate::model::supports::fitted::MAX_BRANCHES;
         let mut speeds: Vec<f64> = general
             .iter()
-            .flat_map(|s| s.speeds().iter().copied())
+            .flat_map(|s| match s.grid() {
+                Some(g) => g.speeds.iter().copied(),
+                None => s.speeds().iter().copied(),
+            })
             .collect();
         speeds.sort_by(f64::total_cmp);
         speeds.dedup();
@@ -335,8 +342,9 @@ impl Task {
     /// Supports over whirl frequency are read by the analyses built for them (the modal
     /// analysis, Campbell diagram and stability threshold, with poles consistent with their
     /// own frequency; the harmonic responses, at the excitation frequency; the static
-    /// deflection, at 0) under the viscous and hysteretic models; anything else refuses them,
-    /// naming the first one's `frequencies`.
+    /// deflection, at 0) under the viscous and hysteretic models, and by the time response and
+    /// the damping matrices through their fit; anything else refuses them, naming the first
+    /// one's `frequencies`.
     pub(crate) fn whirl_read(&self) -> Result<(), Invalid> {
         let supports: &[crate::model::supports::GeneralSupport] = match &self.kind {
             TaskKind::CriticalMap { rotor, .. } => rotor.general_supports(),
@@ -346,6 +354,18 @@ impl Task {
         let Some(first) = supports.iter().find(|s| s.frequency_dependent()) else {
             return Ok(());
         };
+        // The time domain and the damping matrices carry it by its Maxwell fit
+        // (`damping/whirl_fit.rs`), under every model that has a time-domain form.
+        if matches!(self.kind, TaskKind::Time { .. } | TaskKind::Damping { .. }) {
+            return match supports.iter().find(|s| s.ross()) {
+                Some(r) => Err(Invalid::one(
+                    format!("{}.interpolation", r.path()),
+                    "a table on ROSS's curves is scheduled on one model, which a support over \
+                     whirl frequency cannot join in the time domain: use \"linear\"",
+                )),
+                None => Ok(()),
+            };
+        }
         let path = format!("{}.frequencies", first.path());
         let read = match &self.kind {
             TaskKind::Modal { .. }
@@ -362,7 +382,8 @@ impl Task {
                 format!(
                     "a support whose coefficients depend on the whirl frequency is read by \
                      `modal`, `campbell`, `stability` (not held sparse), `unbalance-response`, \
-                     `frequency-response` and `static` so far, not by `{}`",
+                     `frequency-response`, `static`, `time-response` and `damping` so far, not \
+                     by `{}`",
                     self.name()
                 ),
             ));
