@@ -480,3 +480,64 @@ async fn seal_over_frequency_campbell() {
     assert!((first - 470.0).abs() < 5.0, "{first}");
     assert_printed(3000.0 - 470.0, "2530", "seal damping read at 470 rad/s");
 }
+
+#[tokio::test]
+async fn seal_over_frequency_run_up() {
+    let r = run("seal-over-frequency.time-response.json").await;
+    let fit = &r["support_fits"][0];
+    assert_eq!(fit["support"], json!("rotor.seals[0]"), "{fit}");
+    let branches = fit["rates"].as_array().unwrap().len();
+    let deviation = num(&fit["max_deviation"]);
+    let reduction = &r["reduction"];
+    // The run-up's peak at the seal (m) and the speed there (200 rad/s^2 from rest).
+    let time = numbers(&r["time"]);
+    let (x, y) = (numbers(&r["nodes"][0]["x"]), numbers(&r["nodes"][0]["y"]));
+    let (k, peak) = x
+        .iter()
+        .zip(&y)
+        .map(|(a, b)| a.hypot(*b))
+        .enumerate()
+        .fold((0, 0.0), |m, (k, a)| if a > m.1 { (k, a) } else { m });
+    let peak_speed = 200.0 * time[k];
+    // The steady unbalance response, the seal read exactly at the speed.
+    let mut steady = example("seal-over-frequency.time-response.json");
+    let obj = steady.as_object_mut().unwrap();
+    for key in ["speed_profile", "duration", "output_interval"] {
+        obj.remove(key);
+    }
+    steady["speeds"] = json!((0..=200).map(|i| 400.0 + i as f64).collect::<Vec<f64>>());
+    let (status, u) = post_json("/v1/unbalance-response", &steady).await;
+    assert_eq!(status, 200, "{u}");
+    let p = &u["nodes"][0]["peaks"][0];
+    let (steady_peak, steady_speed) = (num(&p["amplitude"]), num(&p["speed"]));
+    // The time response at that speed, held: its steady state against the frequency domain's.
+    let mut held = example("seal-over-frequency.time-response.json");
+    let obj = held.as_object_mut().unwrap();
+    obj.remove("speed_profile");
+    held["speed"] = json!(steady_speed);
+    held["duration"] = json!(1.5);
+    let (status, h) = post_json("/v1/time-response", &held).await;
+    assert_eq!(status, 200, "{h}");
+    let ht = numbers(&h["time"]);
+    let (hx, hy) = (numbers(&h["nodes"][0]["x"]), numbers(&h["nodes"][0]["y"]));
+    let held_amplitude = ht
+        .iter()
+        .enumerate()
+        .filter(|(_, t)| **t >= 1.48)
+        .map(|(k, _)| hx[k].hypot(hy[k]))
+        .fold(0.0, f64::max);
+    assert_eq!(branches, 16, "{fit}");
+    assert_printed(100.0 * deviation, "3.1", "the seal's fit deviation, %");
+    assert_eq!(reduction["modes"], json!(4), "{reduction}");
+    assert_eq!(reduction["states"], json!(38), "{reduction}");
+    assert_eq!(reduction["full_states"], json!(140), "{reduction}");
+    assert_printed(1e6 * peak, "19.9", "run-up peak, um");
+    assert_printed(peak_speed, "486.2", "run-up peak speed");
+    assert_printed(1e6 * steady_peak, "20.75", "steady peak, um");
+    assert_printed(steady_speed, "472.2", "steady peak speed");
+    assert_printed(
+        100.0 * (1.0 - held_amplitude / steady_peak),
+        "2.7",
+        "held time response below the frequency domain, %",
+    );
+}

@@ -42,6 +42,13 @@ pub const SPARSE_FROM_STATES: usize = 100;
 pub fn sparse_applies(system: &RotorSystem, damping: &DampingModel) -> bool {
     matches!(damping, DampingModel::Viscous | DampingModel::Hysteretic)
         && 2 * full_size(system) >= SPARSE_FROM_STATES
+        && !fitted(system)
+}
+
+/// Whether a support carries Maxwell branches fitted to a table over whirl frequency: the
+/// sparse full model has no internal coordinates for them, so such a rotor is solved dense.
+pub fn fitted(system: &RotorSystem) -> bool {
+    system.supports.iter().any(|p| p.support.branches.is_some())
 }
 
 /// Coordinates `N` of the full second-order model.

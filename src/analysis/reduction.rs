@@ -340,7 +340,8 @@ pub(super) fn distance(from: &[c64], to: &[c64], criterion: Criterion) -> f64 {
 /// in 0.4 s instead of 5.8, `tests/nearest.rs`).
 pub(super) fn compared_at(model: &DampedModel, speed: f64) -> Result<Vec<c64>, LinalgError> {
     match &model.kind {
-        ModelKind::Linear(m) if m.p() > 0 => {
+        // A support's fitted branches are poles of the support, compared like the rotor's.
+        ModelKind::Linear(m) if m.branches().modelled() => {
             let rotor = super::poles::poles_at(model, speed)?.rotor;
             let mut out: Vec<c64> = rotor.iter().map(|p| p.s).collect();
             // Doubled, each pole was kept once of its mirror pair `(s, conj s)`; the full
@@ -359,7 +360,7 @@ pub(super) fn compared_at(model: &DampedModel, speed: f64) -> Result<Vec<c64>, L
 /// than the disc's edge), by shift-invert Arnoldi where that is cheaper than the dense solve.
 fn full_compared(model: &DampedModel, speed: f64, bound: f64) -> Result<Vec<c64>, LinalgError> {
     let wanted = match &model.kind {
-        ModelKind::Linear(m) if m.p() > 0 => Wanted::Rotor,
+        ModelKind::Linear(m) if m.branches().modelled() => Wanted::Rotor,
         _ => Wanted::All,
     };
     match super::nearest::poles_within(model, speed, 1.5 * bound, wanted)? {

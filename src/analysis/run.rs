@@ -371,6 +371,14 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                 return Ok(Outcome::Time(r, Some(reduction), fits));
             }
             if *sparse {
+                if let Some(f) = fits.first() {
+                    return Err(RunError::Invalid(Invalid::one(
+                        format!("{}.frequencies", f.path),
+                        "a rotor held sparse has no internal coordinates for the branches a \
+                         support over whirl frequency is fitted with, and is not integrated \
+                         on its full model: use fewer elements",
+                    )));
+                }
                 return Err(RunError::Unsolvable(NOT_REDUCED.into()));
             }
             let damped = DampedModel::build(&system, &model.damping)

@@ -438,7 +438,7 @@ impl ModalDampers {
                             }
                         }
                         b.coupling = CMat::from_fn(vv, cols.len(), |r, c| cols[c][r]);
-                        Damping::Branches(b)
+                        Damping::Branches(Box::new(b))
                     }
                     _ => {
                         let c_n: Vec<(Vec<c64>, f64)> = self
@@ -485,5 +485,5 @@ pub struct Projected {
 #[derive(Debug, Clone)]
 pub enum Damping {
     Equivalent { rotating: CMat, nonrotating: CMat },
-    Branches(Branches),
+    Branches(Box<Branches>),
 }

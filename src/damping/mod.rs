@@ -14,6 +14,7 @@
 //! state matrix is linear between them (`StateModel`). The modal bases are those of the
 //! nonrotating rotor, at rest.
 
+pub mod branches;
 pub mod dampers;
 pub mod equivalent;
 pub mod harmonic;

@@ -166,6 +166,11 @@ pub fn fit(
             Some(r) => r.clone(),
             None => geometric(lo / 2.0, 2.0 * hi.max(lo), fitted[0].branches.len()),
         };
+        // A branch held at zero at every speed adds only a decoupled state: dropped.
+        let kept: Vec<usize> = (0..rates.len())
+            .filter(|&j| fitted.iter().any(|a| !a.branches[j].is_zero()))
+            .collect();
+        let rates: Vec<f64> = kept.iter().map(|&j| rates[j]).collect();
         let mut deviation = [0.0; 4];
         for a in &fitted {
             for (d, e) in deviation.iter_mut().zip(a.deviation) {
@@ -193,7 +198,10 @@ pub fn fit(
             branches: Some(Box::new(Fitted {
                 rates,
                 speeds: speeds.clone(),
-                stiffness: fitted.into_iter().map(|a| a.branches).collect(),
+                stiffness: fitted
+                    .into_iter()
+                    .map(|a| kept.iter().map(|&j| a.branches[j]).collect())
+                    .collect(),
             })),
             ..p.support.clone()
         };

@@ -99,7 +99,7 @@ pub fn solve_sparse(
     let varying = spec.speed.constant().is_none();
     // The equivalent and nonviscous models of a rotor held sparse too: their dampers on the
     // full rotor's lowest modes, the reduction carrying them projected.
-    let damped = held && damping.on_modes();
+    let damped = held && damping.on_modes() && !large::fitted(system);
     if !(allow && (large::sparse_applies(system, damping) || damped) && (varying || held)) {
         return Ok(None);
     }

@@ -27,6 +27,7 @@ mod audit;
 mod held;
 mod loads;
 mod report;
+mod whirl;
 
 pub use report::{MAX_CASES, ModelPlan, ReportPlan, SWEEP_OVER_MCS};
 
@@ -336,68 +337,6 @@ impl Task {
             | TaskKind::Level1 { model, .. }
             | TaskKind::Frequency { model, .. } => Some(model),
             TaskKind::CriticalMap { .. } | TaskKind::Static { .. } | TaskKind::Report(_) => None,
-        }
-    }
-
-    /// Supports over whirl frequency are read by the analyses built for them (the modal
-    /// analysis, Campbell diagram and stability threshold, with poles consistent with their
-    /// own frequency; the harmonic responses, at the excitation frequency; the static
-    /// deflection, at 0) under the viscous and hysteretic models, and by the time response and
-    /// the damping matrices through their fit; anything else refuses them, naming the first
-    /// one's `frequencies`.
-    pub(crate) fn whirl_read(&self) -> Result<(), Invalid> {
-        let supports: &[crate::model::supports::GeneralSupport] = match &self.kind {
-            TaskKind::CriticalMap { rotor, .. } => rotor.general_supports(),
-            TaskKind::Static { .. } | TaskKind::Report(_) => return Ok(()),
-            _ => self.model().map_or(&[], |m| m.rotor.general_supports()),
-        };
-        let Some(first) = supports.iter().find(|s| s.frequency_dependent()) else {
-            return Ok(());
-        };
-        // The time domain and the damping matrices carry it by its Maxwell fit
-        // (`damping/whirl_fit.rs`), under every model that has a time-domain form.
-        if matches!(self.kind, TaskKind::Time { .. } | TaskKind::Damping { .. }) {
-            return match supports.iter().find(|s| s.ross()) {
-                Some(r) => Err(Invalid::one(
-                    format!("{}.interpolation", r.path()),
-                    "a table on ROSS's curves is scheduled on one model, which a support over \
-                     whirl frequency cannot join in the time domain: use \"linear\"",
-                )),
-                None => Ok(()),
-            };
-        }
-        let path = format!("{}.frequencies", first.path());
-        let read = match &self.kind {
-            TaskKind::Modal { .. }
-            | TaskKind::Campbell { .. }
-            | TaskKind::Unbalance { .. }
-            | TaskKind::Frequency { .. } => true,
-            // Held sparse, a threshold is searched on a reduction built once.
-            TaskKind::Stability { held, .. } => held.is_none(),
-            _ => false,
-        };
-        if !read {
-            return Err(Invalid::one(
-                path,
-                format!(
-                    "a support whose coefficients depend on the whirl frequency is read by \
-                     `modal`, `campbell`, `stability` (not held sparse), `unbalance-response`, \
-                     `frequency-response`, `static`, `time-response` and `damping` so far, not \
-                     by `{}`",
-                    self.name()
-                ),
-            ));
-        }
-        match self.model().map(|m| &m.damping) {
-            Some(DampingModel::Viscous | DampingModel::Hysteretic) | None => Ok(()),
-            Some(d) => Err(Invalid::one(
-                path,
-                format!(
-                    "a support whose coefficients depend on the whirl frequency is read by the \
-                     viscous and hysteretic models so far, not by the {} model",
-                    d.name()
-                ),
-            )),
         }
     }
 
