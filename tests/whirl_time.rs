@@ -50,11 +50,18 @@ fn matrix(v: &Value) -> Vec<Vec<f64>> {
         .collect()
 }
 
-/// The steady whirl `r(t) = x + i y` under the forward unbalance force `F e^{i W t}` of the
-/// model the second-order matrices `so` describe (`M q'' + (C_n + C_r - i W S G) q' +
-/// (K - i W S C_r) q = F`, `q = (r, conj r, y_j)`): `Z(iW) X = (F, 0, ...)` and the conjugate
-/// rows' forcing at `-W` give `r = X_0 e^{iWt} + conj(X_1) e^{-iWt}`.
-fn fitted_steady(so: &Value, speed: f64, force: f64) -> impl Fn(f64) -> c64 {
+/// The steady whirl `r(t) = x + i y` of coordinate `at` under the forward unbalance force
+/// `F e^{i W t}` there, of the model the second-order matrices `so` describe
+/// (`M q'' + (C_n + C_r - i W S G) q' + (K - i W S C_r) q = F`): `Z(iW) X = F`; in doubled
+/// coordinates `q = (r, conj r, y_j)` the conjugate rows' forcing at `-W` adds
+/// `conj(X_conj) e^{-iWt}`, `conj` the position of `at`'s copy.
+fn fitted_steady(
+    so: &Value,
+    speed: f64,
+    force: f64,
+    at: usize,
+    conj: Option<usize>,
+) -> impl Fn(f64) -> c64 {
     let part = |name: &str| -> (Vec<Vec<f64>>, Vec<Vec<f64>>) {
         let re = matrix(&so[name]);
         let im = match so.get("imaginary") {
@@ -83,9 +90,12 @@ fn fitted_steady(so: &Value, speed: f64, force: f64) -> impl Fn(f64) -> c64 {
         let stiffness = c(&k, i, j) - iw * spin[i] * c(&cr, i, j);
         s * s * c(&m, i, j) + s * damping + stiffness
     });
-    let f = CMat::from_fn(n, 1, |i, _| c64::new(if i == 0 { force } else { 0.0 }, 0.0));
+    let f = CMat::from_fn(n, 1, |i, _| {
+        c64::new(if i == at { force } else { 0.0 }, 0.0)
+    });
     let x = solve_complex(&z, &f).unwrap();
-    let (x0, x1) = (x[(0, 0)], x[(1, 0)]);
+    let x0 = x[(at, 0)];
+    let x1 = conj.map_or(c64::new(0.0, 0.0), |c| x[(c, 0)]);
     move |t: f64| {
         let e = c64::new(0.0, speed * t).exp();
         x0 * e + (x1 * e).conj()
@@ -142,7 +152,7 @@ async fn the_steady_state_on_a_fitted_support_is_the_fitted_models_and_within_th
         d["coordinates"]
     );
     assert_eq!(d["support_fits"][0], *fit);
-    let fitted = fitted_steady(&d["second_order"], speed, force);
+    let fitted = fitted_steady(&d["second_order"], speed, force, 0, Some(1));
     let table = table_steady(speed, force);
     // The last 0.02 s (a bit more than one turn): the slowest branch (12.5 1/s, half the
     // band's first frequency) has decayed by e^-31.
@@ -196,4 +206,96 @@ async fn the_steady_state_on_a_fitted_support_is_the_fitted_models_and_within_th
         to_table <= bound * size,
         "{to_table} of {size}, bound {bound}"
     );
+}
+
+/// The bundled seal example with a lossy shaft (loss factor 0.01) under the nonviscous model:
+/// the shaft's Maxwell branches and the seal's fitted ones side by side.
+fn lossy_seal_example() -> Value {
+    let path = format!(
+        "{}/examples/seal-over-frequency.time-response.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let mut body: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    body["rotor"]["materials"]["steel"]["loss_factor"] = json!(0.01);
+    body["damping"] = json!({"model": "nonviscous"});
+    body
+}
+
+#[tokio::test]
+async fn the_nonviscous_model_and_a_fitted_seal_integrate_together() {
+    let body = lossy_seal_example();
+    // Held at 472 rad/s: the steady state is the exported model's harmonic solution, its
+    // internal coordinates of both kinds included.
+    let (speed, amount) = (472.0, 1e-4);
+    let mut held = body.clone();
+    let obj = held.as_object_mut().unwrap();
+    obj.remove("speed_profile");
+    held["speed"] = json!(speed);
+    held["duration"] = json!(1.5);
+    let (status, r) = post_json("/v1/time-response", &held).await;
+    assert_eq!(status, 200, "{r}");
+    assert_eq!(r["method"], json!("exact"), "{}", r["method"]);
+    let (status, d) = post_json(
+        "/v1/damping",
+        &json!({"rotor": body["rotor"], "damping": body["damping"], "speed": speed}),
+    )
+    .await;
+    assert_eq!(status, 200, "{d}");
+    let coordinates = d["coordinates"].as_array().unwrap();
+    let kinds = |k: &str| coordinates.iter().filter(|c| c["kind"] == json!(k)).count();
+    let support = kinds("support branch");
+    assert_eq!(
+        support,
+        r["support_fits"][0]["rates"].as_array().unwrap().len()
+    );
+    assert!(kinds("internal") > 0, "{}", d["coordinates"]);
+    // The seal's node (15) translation: single coordinates (isotropic supports).
+    let at = coordinates
+        .iter()
+        .position(|c| c["kind"] == json!("translation") && c["node"] == json!(15))
+        .unwrap();
+    let steady = fitted_steady(&d["second_order"], speed, amount * speed * speed, at, None);
+    let time: Vec<f64> = r["time"].as_array().unwrap().iter().map(num).collect();
+    let (x, y) = (&r["nodes"][0]["x"], &r["nodes"][0]["y"]);
+    let (mut off, mut size) = (0.0_f64, 0.0_f64);
+    for (k, &t) in time.iter().enumerate().filter(|(_, t)| **t >= 1.48) {
+        let got = c64::new(num(&x[k]), num(&y[k]));
+        off = off.max((got - steady(t)).norm());
+        size = size.max(steady(t).norm());
+    }
+    eprintln!("held: {:.3e} of {size:.4e} m", off / size);
+    assert!(off <= 1e-8 * size, "{off} of {size}");
+    // The run-up: integrated on a checked reduction (the seal's branch poles compared with the
+    // rotor's, the shaft's apart).
+    let (status, u) = post_json("/v1/time-response", &body).await;
+    assert_eq!(status, 200, "{u}");
+    let reduction = &u["reduction"];
+    assert!(num(&reduction["max_relative_error"]) <= 1e-3, "{reduction}");
+    assert!(
+        num(&reduction["states"]) < num(&reduction["full_states"]),
+        "{reduction}"
+    );
+}
+
+#[tokio::test]
+async fn a_rotor_held_sparse_with_a_fitted_seal_names_the_seal() {
+    // The example on 1600 elements: past the dense limits, and its sparse model has no internal
+    // coordinates for the seal's branches.
+    let mut body = lossy_seal_example();
+    body["damping"] = json!({"model": "viscous"});
+    let n = 1600;
+    let e = n / 3;
+    let rotor = &mut body["rotor"];
+    for (i, k) in [e, n - 2 * e, e].iter().enumerate() {
+        rotor["shaft"][i]["elements"] = json!(k);
+    }
+    rotor["disks"][0]["node"] = json!(e + 2);
+    rotor["disks"][1]["node"] = json!(n - e - 3);
+    rotor["supports"][1]["node"] = json!(n - 1);
+    rotor["seals"][0]["node"] = json!(n / 2);
+    body["nodes"] = json!([n / 2]);
+    body["unbalances"][0]["node"] = json!(n / 2);
+    let (status, r) = post_json("/v1/time-response", &body).await;
+    assert_eq!(status, 422, "{r}");
+    assert!(r.to_string().contains("rotor.seals[0].frequencies"), "{r}");
 }

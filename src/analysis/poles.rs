@@ -189,7 +189,7 @@ pub fn poles_at(model: &DampedModel, speed: f64) -> Result<PoleSet, LinalgError>
             let e = linalg::eigen(&m.at(speed))?;
             // Without internal coordinates every pole is a rotor pole: no energies to weigh
             // (their `x^H K x` per pole took 18% of a whole-spectrum sweep at 404 states).
-            let all_rotor = e.values.len() <= 2 * n;
+            let all_rotor = e.values.len() <= 2 * n + m.branches().from_supports;
             let mut scored: Vec<(f64, (Pole, f64))> = (0..e.values.len())
                 .map(|j| {
                     let (x, y) = split(m, &e.vectors, j);
@@ -201,10 +201,12 @@ pub fn poles_at(model: &DampedModel, speed: f64) -> Result<PoleSet, LinalgError>
                     (fraction, pole(e.values[j], x, y, m, doubled))
                 })
                 .collect();
-            // Exactly 2N rotor poles: the 2N whose energy is most in the rotor.
+            // Exactly 2N rotor poles, and one per support branch: those whose energy is most in
+            // the rotor and its supports.
             scored.sort_by(|a, b| b.0.total_cmp(&a.0));
+            let kept = 2 * n + m.branches().from_supports;
             for (k, (_, (mut p, w))) in scored.into_iter().enumerate() {
-                if k >= 2 * n {
+                if k >= kept {
                     p.whirl = Whirl::Internal;
                     internal.push((p, w));
                 } else {

@@ -377,9 +377,9 @@ impl StateModel {
         2 * self.n + self.p()
     }
 
-    /// Fraction of a mode's elastic energy stored in the rotor rather than in the branch
-    /// springs: near 1 for a rotor pole, O(eta) for an internal one, whatever the units of
-    /// the internal coordinates.
+    /// Fraction of a mode's elastic energy stored in the rotor (and its supports' fitted
+    /// branches) rather than in the damping model's branch springs: near 1 for a rotor pole,
+    /// O(eta) for an internal one, whatever the units of the internal coordinates.
     pub fn rotor_energy_fraction(&self, x: &[c64], y: &[c64]) -> f64 {
         let n = self.n;
         let mut e_rotor = 0.0;
@@ -391,18 +391,25 @@ impl StateModel {
                 .sum();
             e_rotor += (xr.conj() * kx).re;
         }
-        let mut e_branch = 0.0;
+        // A support's fitted branches are part of the rotor's supports: their poles are the
+        // support's, counted with the rotor's.
+        let own = self.branches.len() - self.branches.from_supports;
+        let (mut e_branch, mut e_support) = (0.0, 0.0);
         for (j, yj) in y.iter().enumerate() {
             let ux: c64 = x
                 .iter()
                 .enumerate()
                 .map(|(c, xc)| self.branches.coupling[(c, j)].conj() * xc)
                 .sum();
-            e_branch += self.branches.stiffness[j] * (yj - ux).norm_sqr();
+            let e = self.branches.stiffness[j] * (yj - ux).norm_sqr();
+            match j < own {
+                true => e_branch += e,
+                false => e_support += e,
+            }
         }
-        let total = e_rotor.abs() + e_branch;
+        let total = e_rotor.abs() + e_support + e_branch;
         if total > 0.0 {
-            e_rotor.abs() / total
+            (e_rotor.abs() + e_support) / total
         } else {
             1.0
         }
