@@ -329,7 +329,7 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
             max_states,
             speed,
         } => {
-            let (system, fits) = models::fitted(model)?;
+            let (system, fits) = models::fitted(model, control)?;
             let options = report::Options {
                 state_form: *state_form,
                 band: *band,
@@ -358,7 +358,7 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
             spec,
             sparse,
         } => {
-            let (system, fits) = models::fitted(model)?;
+            let (system, fits) = models::fitted(model, control)?;
             let reduced = time::reduced::solve_sparse(
                 &system,
                 &model.damping,

@@ -98,11 +98,13 @@ struct AtSpeed {
 
 /// `system` with every support over whirl frequency replaced by its fit (the support's law a
 /// table over the speeds of the fit, or constant, with its branches beside it), and how well
-/// each was fitted.
+/// each was fitted. `stop` is asked before each speed's fit: a table of 512 speeds by 512
+/// frequencies takes minutes, and a cancelled task stops there (`None`).
 pub fn fit(
     system: &RotorSystem,
     options: &FitOptions,
-) -> Result<(RotorSystem, Vec<SupportFit>), DampingError> {
+    stop: &dyn Fn() -> bool,
+) -> Result<Option<(RotorSystem, Vec<SupportFit>)>, DampingError> {
     if let Some(p) = system.supports.iter().find(|p| p.support.ross()) {
         return Err(DampingError::Unsolvable(format!(
             "{}: a table on ROSS's curves is scheduled on one model, which a support over whirl \
@@ -136,24 +138,38 @@ pub fn fit(
         let hi = freqs[freqs.len() - 1];
         let lo = freqs.iter().copied().find(|&w| w > 0.0).unwrap_or(hi);
         let samples = samples(freqs);
-        let read = |speed: f64| -> Vec<Coefficients> {
-            samples.iter().map(|&w| grid.at(speed, w)).collect()
-        };
         let isotropic = grid.isotropic();
+        // The fit at every speed with `rates`; `None` once stopped.
+        let all = |rates: &[f64]| -> Result<Option<Vec<AtSpeed>>, DampingError> {
+            let mut out = vec![];
+            for &w in &at {
+                if stop() {
+                    return Ok(None);
+                }
+                let table: Vec<Coefficients> = samples.iter().map(|&f| grid.at(w, f)).collect();
+                out.push(fit_at(
+                    &samples,
+                    &table,
+                    grid.at(w, 0.0).m,
+                    rates,
+                    isotropic,
+                )?);
+            }
+            Ok(Some(out))
+        };
         let fitted: Vec<AtSpeed> = match &options.rates {
-            Some(rates) => at
-                .iter()
-                .map(|&w| fit_at(&samples, &read(w), grid.at(w, 0.0).m, rates, isotropic))
-                .collect::<Result<_, _>>()?,
+            Some(rates) => match all(rates)? {
+                Some(f) => f,
+                None => return Ok(None),
+            },
             None => {
                 // Branches added until every speed meets the target.
                 let mut m = 1;
                 loop {
                     let rates = geometric(lo / 2.0, 2.0 * hi.max(lo), m);
-                    let f: Vec<AtSpeed> = at
-                        .iter()
-                        .map(|&w| fit_at(&samples, &read(w), grid.at(w, 0.0).m, &rates, isotropic))
-                        .collect::<Result<_, _>>()?;
+                    let Some(f) = all(&rates)? else {
+                        return Ok(None);
+                    };
                     let worst = f.iter().flat_map(|a| a.deviation).fold(0.0, f64::max);
                     if worst <= options.target || m >= options.max_branches {
                         break f;
@@ -206,7 +222,7 @@ pub fn fit(
             ..p.support.clone()
         };
     }
-    Ok((out, fits))
+    Ok(Some((out, fits)))
 }
 
 /// `m` rates geometric from `lo` to `hi` (one: their geometric mean).

@@ -3,6 +3,7 @@
 
 use super::RunError;
 use crate::analysis::AnalysisError;
+use crate::analysis::control::Control;
 use crate::analysis::response;
 use crate::damping::whirl_fit::{self, FitOptions, SupportFit};
 use crate::damping::{DampedModel, DampingError};
@@ -33,12 +34,17 @@ pub(super) fn assemble(model: &Model) -> Result<RotorSystem, RunError> {
 
 /// The rotor assembled with its supports over whirl frequency fitted by Maxwell branches (how
 /// the time domain and the damping matrices read them), and how well each was fitted.
-pub(super) fn fitted(model: &Model) -> Result<(RotorSystem, Vec<SupportFit>), RunError> {
+pub(super) fn fitted(
+    model: &Model,
+    control: &Control,
+) -> Result<(RotorSystem, Vec<SupportFit>), RunError> {
     let system = assemble(model)?;
     if !system.frequency_dependent() {
         return Ok((system, vec![]));
     }
-    whirl_fit::fit(&system, &FitOptions::default()).map_err(|e| damping_error(e, &model.rotor))
+    whirl_fit::fit(&system, &FitOptions::default(), &|| control.is_cancelled())
+        .map_err(|e| damping_error(e, &model.rotor))?
+        .ok_or(RunError::Cancelled)
 }
 
 /// Assembles the rotor and builds its damping model.

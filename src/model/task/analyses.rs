@@ -265,7 +265,8 @@ impl DampingMatricesRequest {
             } else {
                 0
             };
-        let cost = Cost::new(size, 0, 0, extra, values).with_work(size.eigen_work() / 10.0);
+        let cost = Cost::new(size, 0, 0, extra, values)
+            .with_work(size.eigen_work() / 10.0 + model.fit_work());
         Task {
             output_unit: Default::default(),
             warnings: model.warnings(speed, speed),

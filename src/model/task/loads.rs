@@ -192,7 +192,7 @@ impl TimeResponseRequest {
         } else {
             (samples as f64).max(1e4).max(fewest)
         };
-        let work = size.eigen_work() + steps * 8.0 * (s * s) as f64;
+        let work = size.eigen_work() + steps * 8.0 * (s * s) as f64 + model.fit_work();
         let cost = match sparse {
             true => {
                 // The outputs' histories, and the reduced model's as `extra` counts the full's.
