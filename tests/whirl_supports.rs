@@ -356,15 +356,7 @@ async fn a_rotor_held_sparse_reads_its_seal_at_each_poles_frequency() {
     let text = std::fs::read_to_string("examples/seal-over-frequency.modal.json").unwrap();
     let mut body: Value = serde_json::from_str(&text).unwrap();
     let (n, speed) = (900, 800.0);
-    let e = n / 3;
-    let rotor = &mut body["rotor"];
-    for (i, k) in [e, n - 2 * e, e].iter().enumerate() {
-        rotor["shaft"][i]["elements"] = json!(k);
-    }
-    rotor["disks"][0]["node"] = json!(e + 2);
-    rotor["disks"][1]["node"] = json!(n - e - 3);
-    rotor["supports"][1]["node"] = json!(n - 1);
-    rotor["seals"][0]["node"] = json!(n / 2);
+    common::seal_example_on(&mut body["rotor"], n);
     let (status, r) = post_json("/v1/modal", &body).await;
     assert_eq!(status, 200, "{r}");
     assert_eq!(r["full_model"], "sparse");

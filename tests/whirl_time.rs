@@ -284,15 +284,7 @@ async fn a_rotor_held_sparse_with_a_fitted_seal_names_the_seal() {
     let mut body = lossy_seal_example();
     body["damping"] = json!({"model": "viscous"});
     let n = 1600;
-    let e = n / 3;
-    let rotor = &mut body["rotor"];
-    for (i, k) in [e, n - 2 * e, e].iter().enumerate() {
-        rotor["shaft"][i]["elements"] = json!(k);
-    }
-    rotor["disks"][0]["node"] = json!(e + 2);
-    rotor["disks"][1]["node"] = json!(n - e - 3);
-    rotor["supports"][1]["node"] = json!(n - 1);
-    rotor["seals"][0]["node"] = json!(n / 2);
+    common::seal_example_on(&mut body["rotor"], n);
     body["nodes"] = json!([n / 2]);
     body["unbalances"][0]["node"] = json!(n / 2);
     let (status, r) = post_json("/v1/time-response", &body).await;

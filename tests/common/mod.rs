@@ -83,6 +83,20 @@ pub fn stepped_rotor(elements: usize, bearing: serde_json::Value, loss: f64) -> 
     })
 }
 
+/// The bundled seal example's rotor (`examples/seal-over-frequency.*`) remeshed on `n`
+/// elements, its disks, far bearing and seal moved with the mesh (the seal to node `n / 2`).
+#[allow(dead_code)]
+pub fn seal_example_on(rotor: &mut serde_json::Value, n: usize) {
+    let e = n / 3;
+    for (i, k) in [e, n - 2 * e, e].iter().enumerate() {
+        rotor["shaft"][i]["elements"] = serde_json::json!(k);
+    }
+    rotor["disks"][0]["node"] = serde_json::json!(e + 2);
+    rotor["disks"][1]["node"] = serde_json::json!(n - e - 3);
+    rotor["supports"][1]["node"] = serde_json::json!(n - 1);
+    rotor["seals"][0]["node"] = serde_json::json!(n / 2);
+}
+
 /// The paper's nonviscous model of Example 1: 3 rotating branches over a decade at 10 rad/s,
 /// unit weights, and 3 nonrotating ones weighted by the reciprocals of the rotating gammas.
 pub fn paper_nvd() -> whirl::model::damping::DampingModel {
