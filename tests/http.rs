@@ -6,7 +6,7 @@ mod common;
 use axum::Router;
 use axum::body::Body;
 use axum::http::{Request, StatusCode, header};
-use common::assert_printed;
+use common::{assert_printed, matrix};
 use http_body_util::BodyExt;
 use serde_json::{Value, json};
 use tower::ServiceExt;
@@ -453,14 +453,6 @@ async fn a_bounded_campbell_reports_its_modal_reduction() {
         full["branches"].as_array().unwrap().len(),
         v["branches"].as_array().unwrap().len()
     );
-}
-
-fn matrix(v: &Value) -> Vec<Vec<f64>> {
-    v.as_array()
-        .unwrap()
-        .iter()
-        .map(|r| r.as_array().unwrap().iter().map(num).collect())
-        .collect()
 }
 
 #[tokio::test]

@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::post_json;
+use common::{matrix, post_json};
 use serde_json::{Value, json};
 use whirl::linalg::{CMat, c64, solve_complex};
 
@@ -40,14 +40,6 @@ fn maxwell_mass() -> Value {
             json!(w.iter().map(|&w| coefficient(e, w).1).collect::<Vec<_>>());
     }
     json!({"type": "matrices", "mass": [[M]], "stiffness": [[KS]], "supports": [support]})
-}
-
-fn matrix(v: &Value) -> Vec<Vec<f64>> {
-    v.as_array()
-        .unwrap()
-        .iter()
-        .map(|r| r.as_array().unwrap().iter().map(num).collect())
-        .collect()
 }
 
 /// The steady whirl `r(t) = x + i y` of coordinate `at` under the forward unbalance force

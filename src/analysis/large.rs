@@ -53,10 +53,7 @@ pub fn fitted(system: &RotorSystem) -> bool {
 
 /// Coordinates `N` of the full second-order model.
 pub fn full_size(system: &RotorSystem) -> usize {
-    match system.layout() {
-        Layout::Single => system.n(),
-        Layout::Doubled => 2 * system.n(),
-    }
+    system.layout().size(system.n())
 }
 
 /// The equivalent or nonviscous model's dampers of a rotor held sparse for an analysis bounded

@@ -75,10 +75,7 @@ pub fn parts_of(system: &RotorSystem, hysteretic: bool, speed: f64) -> Parts {
 pub fn parts_read(system: &RotorSystem, hysteretic: bool, speed: f64, whirl: Option<f64>) -> Parts {
     let layout = system.layout();
     let n = system.n();
-    let size = match layout {
-        Layout::Single => n,
-        Layout::Doubled => 2 * n,
-    };
+    let size = layout.size(n);
     let spin = |i: usize| if i < n { 1.0 } else { -1.0 };
     let i1 = c64::new(0.0, 1.0);
     let real = |v: f64| c64::new(v, 0.0);

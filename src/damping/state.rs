@@ -158,8 +158,7 @@ impl StateModel {
         // W_nu U^H, a product of n x p factors (p reaches 6n with nonviscous damping).
         let u = &br.coupling;
         let uh = u.adjoint().to_owned();
-        let ones = vec![real(1.0); br.len()];
-        let kadd = linalg::scaled_product(&br.main_load(), &ones, &uh);
+        let kadd = &br.main_load() * &uh;
         let physical = Physical {
             mass: so.mass.clone(),
             d0: so.d0.clone(),

@@ -116,10 +116,7 @@ pub fn fit(
     let mut speeds: Vec<f64> = system
         .supports
         .iter()
-        .flat_map(|p| match p.support.grid() {
-            Some(g) => g.speeds.clone(),
-            None => p.support.speeds().to_vec(),
-        })
+        .flat_map(|p| p.support.tabulated_speeds().iter().copied())
         .collect();
     speeds.sort_by(f64::total_cmp);
     speeds.dedup();
@@ -139,21 +136,24 @@ pub fn fit(
         let lo = freqs.iter().copied().find(|&w| w > 0.0).unwrap_or(hi);
         let samples = samples(freqs);
         let isotropic = grid.isotropic();
+        // The table read at every speed once (and its mass at rest), whatever the rates.
+        let mut tables: Vec<(Vec<Coefficients>, Matrix2)> = vec![];
+        for &w in &at {
+            if stop() {
+                return Ok(None);
+            }
+            let table = samples.iter().map(|&f| grid.at(w, f)).collect();
+            tables.push((table, grid.at(w, 0.0).m));
+        }
         // The fit at every speed with `rates`; `None` once stopped.
         let all = |rates: &[f64]| -> Result<Option<Vec<AtSpeed>>, DampingError> {
+            let design = Design::new(&samples, rates);
             let mut out = vec![];
-            for &w in &at {
+            for (table, m0) in &tables {
                 if stop() {
                     return Ok(None);
                 }
-                let table: Vec<Coefficients> = samples.iter().map(|&f| grid.at(w, f)).collect();
-                out.push(fit_at(
-                    &samples,
-                    &table,
-                    grid.at(w, 0.0).m,
-                    rates,
-                    isotropic,
-                )?);
+                out.push(fit_at(&design, table, *m0, isotropic)?);
             }
             Ok(Some(out))
         };
@@ -245,36 +245,61 @@ fn samples(freqs: &[f64]) -> Vec<f64> {
     out
 }
 
-/// The fit at one speed: `table` read at `samples`, the branch `rates`.
-fn fit_at(
-    samples: &[f64],
-    table: &[Coefficients],
-    m0: Matrix2,
-    rates: &[f64],
-    isotropic: bool,
-) -> Result<AtSpeed, DampingError> {
-    let p = rates.len();
-    let get = |m: &Matrix2, e: usize| [m.xx, m.xy, m.yx, m.yy][e];
-    // Rows: Re and Im at each sample; columns K0, C0, G_j.
-    let rows = 2 * samples.len();
-    let mut a = RMat::zeros(rows, p + 2);
-    for (i, &w) in samples.iter().enumerate() {
-        a[(2 * i, 0)] = 1.0;
-        a[(2 * i + 1, 1)] = w;
-        for (j, &d) in rates.iter().enumerate() {
-            let den = w * w + d * d;
-            a[(2 * i, 2 + j)] = w * w / den;
-            a[(2 * i + 1, 2 + j)] = w * d / den;
+/// The least-squares matrix of a fit over `samples` with `rates`, the same at every speed and
+/// for every coefficient: rows Re and Im at each sample, columns `K0`, `C0`, `G_j`, each
+/// scaled to unit length (`K0` in N/m beside `C0` in N s/m).
+struct Design<'a> {
+    samples: &'a [f64],
+    rates: &'a [f64],
+    scaled: RMat,
+    scale: Vec<f64>,
+}
+
+impl<'a> Design<'a> {
+    fn new(samples: &'a [f64], rates: &'a [f64]) -> Self {
+        let p = rates.len();
+        let rows = 2 * samples.len();
+        let mut a = RMat::zeros(rows, p + 2);
+        for (i, &w) in samples.iter().enumerate() {
+            a[(2 * i, 0)] = 1.0;
+            a[(2 * i + 1, 1)] = w;
+            for (j, &d) in rates.iter().enumerate() {
+                let den = w * w + d * d;
+                a[(2 * i, 2 + j)] = w * w / den;
+                a[(2 * i + 1, 2 + j)] = w * d / den;
+            }
+        }
+        let scale: Vec<f64> = (0..p + 2)
+            .map(|j| {
+                let s = (0..rows).map(|i| a[(i, j)].powi(2)).sum::<f64>().sqrt();
+                if s > 0.0 { s } else { 1.0 }
+            })
+            .collect();
+        let scaled = RMat::from_fn(rows, p + 2, |i, j| a[(i, j)] / scale[j]);
+        Design {
+            samples,
+            rates,
+            scaled,
+            scale,
         }
     }
-    // Columns scaled to unit length: K0 in N/m beside C0 in N s/m.
-    let scale: Vec<f64> = (0..p + 2)
-        .map(|j| {
-            let s = (0..rows).map(|i| a[(i, j)].powi(2)).sum::<f64>().sqrt();
-            if s > 0.0 { s } else { 1.0 }
-        })
-        .collect();
-    let scaled = RMat::from_fn(rows, p + 2, |i, j| a[(i, j)] / scale[j]);
+}
+
+/// The fit at one speed of `table` read at the design's samples, its mass `m0` at rest.
+fn fit_at(
+    design: &Design,
+    table: &[Coefficients],
+    m0: Matrix2,
+    isotropic: bool,
+) -> Result<AtSpeed, DampingError> {
+    let Design {
+        samples,
+        rates,
+        scaled,
+        scale,
+    } = design;
+    let p = rates.len();
+    let get = |m: &Matrix2, e: usize| [m.xx, m.xy, m.yx, m.yy][e];
     let target = |e: usize| -> Vec<f64> {
         samples
             .iter()
@@ -294,7 +319,7 @@ fn fit_at(
         for &e in solved {
             let direct = e == 0 || e == 3;
             let constrained: Vec<bool> = (0..p + 2).map(|j| bounded && direct && j > 0).collect();
-            let x = linalg::bounded_least_squares(&scaled, &target(e), &constrained)?;
+            let x = linalg::bounded_least_squares(scaled, &target(e), &constrained)?;
             k0[e] = x[0] / scale[0];
             c0[e] = x[1] / scale[1];
             for j in 0..p {
@@ -455,7 +480,7 @@ mod tests {
         let d = 300.0;
         let w: Vec<f64> = (0..=40).map(|i| 25.0 * i as f64).collect();
         let table: Vec<Coefficients> = w.iter().map(|&w| maxwell(k0, c0, g, d, w)).collect();
-        let f = fit_at(&w, &table, Matrix2::default(), &[d], false).unwrap();
+        let f = fit_at(&Design::new(&w, &[d]), &table, Matrix2::default(), false).unwrap();
         let close = |a: &Matrix2, b: &Matrix2, scale: f64| {
             [(a.xx, b.xx), (a.xy, b.xy), (a.yx, b.yx), (a.yy, b.yy)]
                 .iter()
@@ -493,7 +518,7 @@ mod tests {
             })
             .collect();
         let rates = geometric(12.5, 1000.0, MAX_BRANCHES);
-        let f = fit_at(&w, &table, Matrix2::default(), &rates, true).unwrap();
+        let f = fit_at(&Design::new(&w, &rates), &table, Matrix2::default(), true).unwrap();
         let c0 = [f.base.c.xx, f.base.c.xy, f.base.c.yx, f.base.c.yy];
         let g: Vec<[f64; 4]> = f
             .branches

@@ -256,6 +256,15 @@ impl GeneralSupport {
         }
     }
 
+    /// The speeds its table is given at: a table over speed's, or one over whirl frequency's
+    /// (none where the coefficients do not depend on the speed).
+    pub fn tabulated_speeds(&self) -> &[f64] {
+        match &self.law {
+            Law::Grid(g) => &g.speeds,
+            _ => self.speeds(),
+        }
+    }
+
     /// Whether it acts on `r` alone at every speed.
     pub fn isotropic(&self) -> bool {
         match &self.law {

@@ -24,6 +24,16 @@ pub enum Layout {
     Doubled,
 }
 
+impl Layout {
+    /// Coordinates of a rotor of `n` complex degrees of freedom: `n`, or `2 n` doubled.
+    pub fn size(self, n: usize) -> usize {
+        match self {
+            Layout::Single => n,
+            Layout::Doubled => 2 * n,
+        }
+    }
+}
+
 /// The rotor's matrices at one speed, complex, `N x N` (see the module docs).
 #[derive(Debug, Clone)]
 pub struct Realized {
@@ -81,10 +91,7 @@ impl SupportBranches {
     /// The branches of `system`'s supports at `speed`, in `layout`.
     fn of(system: &RotorSystem, layout: Layout, speed: f64) -> Self {
         let n = system.n();
-        let size = match layout {
-            Layout::Single => n,
-            Layout::Doubled => 2 * n,
-        };
+        let size = layout.size(n);
         let (mut u_cols, mut w_cols) = (vec![], vec![]);
         let (mut rate, mut of) = (vec![], vec![]);
         for (s, p) in system.supports.iter().enumerate() {
@@ -123,10 +130,7 @@ impl SupportBranches {
 /// A real `n x n` matrix on the diagonal block(s) of an `N x N` complex one.
 fn blocks(a: &Sparse, layout: Layout) -> CMat {
     let n = a.nrows();
-    let size = match layout {
-        Layout::Single => n,
-        Layout::Doubled => 2 * n,
-    };
+    let size = layout.size(n);
     let mut out = CMat::zeros(size, size);
     for (i, j, v) in a.entries() {
         out[(i, j)] = c64::new(v, 0.0);
@@ -217,10 +221,7 @@ impl Realized {
                 Layout::Single => vec![1.0; n],
                 Layout::Doubled => (0..2 * n).map(|i| if i < n { 1.0 } else { -1.0 }).collect(),
             },
-            branches: SupportBranches::none(match layout {
-                Layout::Single => n,
-                Layout::Doubled => 2 * n,
-            }),
+            branches: SupportBranches::none(layout.size(n)),
         };
         add_circulatory(&mut r.stiffness, &system.circulatory, layout);
         for p in &system.supports {

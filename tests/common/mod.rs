@@ -129,6 +129,11 @@ pub fn floats(v: &serde_json::Value) -> Vec<f64> {
         .collect()
 }
 
+/// A JSON matrix (rows of numbers).
+pub fn matrix(v: &serde_json::Value) -> Vec<Vec<f64>> {
+    v.as_array().unwrap().iter().map(floats).collect()
+}
+
 /// The rotor of a JSON body, assembled.
 pub fn assemble(v: serde_json::Value) -> whirl::system::RotorSystem {
     let rotor: whirl::model::api::RotorInput = serde_json::from_value(v).unwrap();

@@ -97,10 +97,7 @@ impl Model {
         let internal = internal + copies * fitted * crate::model::supports::fitted::MAX_BRANCHES;
         let mut speeds: Vec<f64> = general
             .iter()
-            .flat_map(|s| match s.grid() {
-                Some(g) => g.speeds.iter().copied(),
-                None => s.speeds().iter().copied(),
-            })
+            .flat_map(|s| s.tabulated_speeds().iter().copied())
             .collect();
         speeds.sort_by(f64::total_cmp);
         speeds.dedup();

@@ -74,21 +74,14 @@ impl super::Model {
     /// per frequency with up to 18 columns, for each of 4 coefficients and each of up to 16
     /// branch counts, about 10 active-set passes each.
     pub(crate) fn fit_work(&self) -> f64 {
-        let general = self.rotor.general_supports();
-        let mut speeds: Vec<f64> = general
-            .iter()
-            .flat_map(|s| match s.grid() {
-                Some(g) => g.speeds.clone(),
-                None => s.speeds().to_vec(),
-            })
-            .collect();
-        speeds.sort_by(f64::total_cmp);
-        speeds.dedup();
-        let per_speed: f64 = general
+        let per_speed: f64 = self
+            .rotor
+            .general_supports()
             .iter()
             .filter_map(|s| s.grid())
             .map(|g| 8.0 * g.frequencies.len() as f64 * 18.0 * 18.0 * 4.0 * 16.0 * 10.0)
             .sum();
-        per_speed * speeds.len().max(1) as f64
+        // The speeds of every table, where the state model is realized.
+        per_speed * self.size().points as f64
     }
 }
