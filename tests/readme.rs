@@ -458,12 +458,17 @@ async fn seal_over_frequency_campbell() {
     assert!(r["threshold"].is_null(), "{}", r["threshold"]);
     // The seal read at the speed: a table over speed alone at the synchronous values (linear
     // in the speed, so exact between its points): N/m, N s/m.
-    let mut body = example("seal-over-frequency.campbell.json");
+    // (examples/seal-at-speed.campbell.json, the same rotor and grid otherwise).
+    let body = example("seal-at-speed.campbell.json");
+    let mut same = example("seal-over-frequency.campbell.json");
+    same["rotor"]["seals"] = body["rotor"]["seals"].clone();
+    assert_eq!(same, body);
     let ts = [0.0, 250.0, 500.0, 750.0, 1000.0, 1500.0, 2000.0, 2400.0];
     let col = |f: &dyn Fn(f64) -> f64| ts.iter().map(|&w| f(w)).collect::<Vec<f64>>();
-    body["rotor"]["seals"] = json!([{"node": 15, "speeds": ts,
+    let seal = json!([{"node": 15, "speeds": ts,
         "kxx": col(&|w| 2e6 + 1.5e3 * w), "kxy": col(&|w| 300.0 * w),
         "kyx": col(&|w| -300.0 * w), "cxx": col(&|w| 3000.0 - w)}]);
+    assert_eq!(body["rotor"]["seals"], seal);
     let (status, s) = post_json("/v1/campbell", &body).await;
     assert_eq!(status, 200, "{s}");
     let sync = numbers(&s["critical_speeds"]);

@@ -408,6 +408,7 @@ pub fn level1_data() -> Level1Response {
         region: None,
         level2: None,
         reduction: None,
+        max_residual: None,
         model: "hysteretic".into(),
         warnings: vec![],
     }

@@ -4,44 +4,10 @@
 
 mod common;
 
+use common::over_whirl::*;
 use common::post_json;
 use num_complex::Complex64 as C;
 use serde_json::{Value, json};
-
-fn num(v: &Value) -> f64 {
-    v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
-}
-
-/// A mass of 10 kg on a 1e6 N/m shaft, on a support with `k(w) = 2e5 + 500 w` N/m and
-/// `c(w) = 100 + 0.5 w` N s/m, tabulated at whirl frequencies 0..500 rad/s (linear in `w`, so
-/// PCHIP reads it exactly).
-const M: f64 = 10.0;
-const KS: f64 = 1e6;
-const K0: f64 = 2e5;
-const K1: f64 = 500.0;
-const C0: f64 = 100.0;
-const C1: f64 = 0.5;
-
-fn table() -> (Vec<f64>, Vec<f64>, Vec<f64>) {
-    let w: Vec<f64> = (0..6).map(|i| 100.0 * i as f64).collect();
-    let k = w.iter().map(|w| K0 + K1 * w).collect();
-    let c = w.iter().map(|w| C0 + C1 * w).collect();
-    (w, k, c)
-}
-
-fn one_mass(speed_table: bool) -> Value {
-    let (w, k, c) = table();
-    let (kxx, cxx) = match speed_table {
-        // The same at two spin speeds: a list per speed.
-        true => (json!([k, k]), json!([c, c])),
-        false => (json!(k), json!(c)),
-    };
-    let mut support = json!({"node": 0, "frequencies": w, "kxx": kxx, "cxx": cxx});
-    if speed_table {
-        support["speeds"] = json!([0.0, 1000.0]);
-    }
-    json!({"type": "matrices", "mass": [[M]], "stiffness": [[KS]], "supports": [support]})
-}
 
 /// The pole `s = sigma + i w` of `m s^2 + c(w) s + k_s + k(w) = 0` read at its own `w`:
 /// the imaginary part gives `sigma = -c(w) / 2m`, the real part the quadratic
@@ -116,18 +82,6 @@ async fn a_frequency_response_reads_the_support_at_the_excitation_frequency() {
 #[tokio::test]
 async fn tables_over_whirl_frequency_are_refused_where_not_yet_read() {
     let rotor = one_mass(false);
-    for (uri, extra) in [("/v1/level1", json!({"speed": 100.0, "node": 0}))] {
-        let mut body = json!({"rotor": rotor, "damping": {"model": "viscous"}});
-        for (k, v) in extra.as_object().unwrap() {
-            body[k] = v.clone();
-        }
-        let (status, r) = post_json(uri, &body).await;
-        assert_eq!(status, 422, "{uri}: {r}");
-        assert!(
-            r.to_string().contains("rotor.supports[0].frequencies"),
-            "{uri}: {r}"
-        );
-    }
     let body = json!({"rotor": rotor, "damping": {"model": "equivalent"}, "speed": 0.0});
     let (status, r) = post_json("/v1/modal", &body).await;
     assert_eq!(status, 422, "{r}");
@@ -181,46 +135,6 @@ async fn a_bad_table_over_whirl_frequency_names_its_field() {
             "{support}: wanted {path} in {r}"
         );
     }
-}
-
-/// A seal at mid-span of the 30-element stepped rotor, anisotropic and cross-coupled, over
-/// whirl frequency and spin speed, each coefficient linear in both (N/m, N s/m; `w`, `W` in
-/// rad/s), so that its reading at any point is known by hand.
-fn seal_at(w: f64, spin: f64) -> [(&'static str, f64); 6] {
-    [
-        ("kxx", 2e6 + 1000.0 * w + 500.0 * spin),
-        ("kyy", 3e6 + 800.0 * w),
-        ("kxy", 5e5 + 200.0 * w + 100.0 * spin),
-        ("kyx", -(4e5 + 300.0 * w)),
-        ("cxx", 500.0 + 0.2 * w),
-        ("cyy", 500.0 + 0.2 * w),
-    ]
-}
-
-fn sealed(seal: Value, loss: f64) -> Value {
-    let mut rotor = common::stepped_rotor(30, json!({"stiffness": 5e7, "damping": 2e3}), loss);
-    rotor["seals"] = json!([seal]);
-    rotor
-}
-
-fn tabulated_seal(loss: f64) -> Value {
-    let freqs: Vec<f64> = (0..11).map(|i| 200.0 * i as f64).collect();
-    let speeds = [0.0, 1000.0];
-    let mut seal = json!({"node": 15, "frequencies": freqs, "speeds": speeds});
-    for (k, name) in ["kxx", "kyy", "kxy", "kyx", "cxx", "cyy"]
-        .iter()
-        .enumerate()
-    {
-        let rows: Vec<Vec<f64>> = speeds
-            .iter()
-            .map(|&spin| freqs.iter().map(|&w| seal_at(w, spin)[k].1).collect())
-            .collect();
-        seal[*name] = json!(rows);
-    }
-    if loss > 0.0 {
-        seal["loss_factor"] = json!(loss);
-    }
-    seal
 }
 
 fn poles(r: &Value) -> Vec<C> {

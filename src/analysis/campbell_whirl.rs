@@ -14,7 +14,7 @@ use rayon::prelude::*;
 
 use super::AnalysisError;
 use super::campbell::{Branch, CampbellResult, Keep, branches_of, forward_criticals};
-use super::consistent::consistent;
+use super::consistent::consistent_on;
 use super::control::Control;
 use super::criticals::{Critical, TOLERANCE};
 use super::modal::modal_consistent;
@@ -132,10 +132,14 @@ fn crossing(
         let t = (w - p.0) / (q.0 - p.0);
         p.1 + (q.1 - p.1) * t
     };
+    // A forward crossing of the hysteretic model on its crossing problem (the rotating loss's
+    // sign flips there: `analysis::criticals`).
+    let forward = p.1.im >= 0.0;
+    let consistent = |w: f64, s: c64| consistent_on(system, damping, w, s, forward);
     let mut last: Option<(f64, c64)> = None;
     let mut lost = false;
     let mut g = |w: f64| -> Result<f64, AnalysisError> {
-        let Some(c) = consistent(system, damping, w, guess(w))? else {
+        let Some(c) = consistent(w, guess(w))? else {
             lost = true;
             return Ok(0.0);
         };
@@ -151,6 +155,6 @@ fn crossing(
     // The pole at the root itself (Brent's last evaluation need not be there).
     Ok(match last {
         Some((at, s)) if at == w => Some((w, s)),
-        _ => consistent(system, damping, w, guess(w))?.map(|c| (w, c.s)),
+        _ => consistent(w, guess(w))?.map(|c| (w, c.s)),
     })
 }

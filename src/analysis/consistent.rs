@@ -49,16 +49,21 @@ pub struct Consistent {
 }
 
 /// The eigenvalue of `system` read at `w` nearest `guess` (within [`SEARCH`] of it), with its
-/// shape and residual.
+/// shape and residual; on the hysteretic model's crossing problem where `crossing`
+/// ([`large::crossing_problem`]).
 fn nearest_read(
     system: &RotorSystem,
     damping: &DampingModel,
     speed: f64,
-    w: f64,
+    (w, crossing): (f64, bool),
     guess: c64,
 ) -> Result<Option<(c64, Vec<c64>, f64)>, AnalysisError> {
     let read = system.read(speed, w);
-    let problems = large::problems(&read, damping, None, speed).ok_or_else(|| {
+    let problems = match crossing {
+        true => large::crossing_problem(&read, speed).map(|p| vec![p]),
+        false => large::problems(&read, damping, None, speed),
+    };
+    let problems = problems.ok_or_else(|| {
         AnalysisError::Damping(DampingError::Unsolvable(
             "supports over whirl frequency are read by the viscous and hysteretic models".into(),
         ))
@@ -67,7 +72,14 @@ fn nearest_read(
     let scale = guess.norm().max(1e-3);
     let shift = guess + c64::new(1e-9, 1.3e-9) * scale;
     let mut best: Option<(c64, Vec<c64>, f64)> = None;
-    for p in problems.iter().filter(|p| p.consistent(guess, speed)) {
+    // The hysteretic model's problems whose signs the guess has first; the others where none
+    // of those holds a pole near it with its own signs (a guess on the wrong side of the 1x
+    // line, as near a crossing, where the rotating loss changes sign).
+    let (first, rest): (Vec<_>, Vec<_>) = problems.iter().partition(|p| p.consistent(guess, speed));
+    for p in first.into_iter().chain(rest) {
+        if best.is_some() && !p.consistent(guess, speed) {
+            break;
+        }
         let op = p.shift_invert(shift)?;
         let size = op.states();
         let n = op.coordinates();
@@ -109,10 +121,23 @@ pub fn consistent(
     speed: f64,
     s0: c64,
 ) -> Result<Option<Consistent>, AnalysisError> {
+    consistent_on(system, damping, speed, s0, false)
+}
+
+/// [`consistent`] on the hysteretic model's crossing problem where `crossing` (a forward
+/// crossing of the 1x line, where its rotating loss changes sign: `analysis::criticals`).
+pub fn consistent_on(
+    system: &RotorSystem,
+    damping: &DampingModel,
+    speed: f64,
+    s0: c64,
+    crossing: bool,
+) -> Result<Option<Consistent>, AnalysisError> {
+    let crossing = crossing && matches!(damping, DampingModel::Hysteretic);
     let mut solves = 0;
     let mut at = |w: f64, guess: c64| {
         solves += 1;
-        nearest_read(system, damping, speed, w, guess)
+        nearest_read(system, damping, speed, (w, crossing), guess)
     };
     let w0 = s0.im.abs();
     let Some(first) = at(w0, s0)? else {

@@ -3,6 +3,7 @@
 
 mod audit_report;
 mod models;
+mod threshold;
 
 pub use models::build;
 use models::{assemble, damping_error, harmonic_model, rigid_body};
@@ -25,7 +26,7 @@ use super::modal::{self, ModalResult};
 use super::poles::Whirl;
 use super::refine;
 use super::response::{self, ResponseReduction};
-use super::stability::{self, Threshold};
+use super::stability::Threshold;
 use super::stability_large;
 use super::time::{self, TimeError, TimeResult};
 use super::unbalance::{Orbit, SteadyUnbalance};
@@ -44,8 +45,10 @@ pub enum Outcome {
         threshold: Option<Threshold>,
         speeds: Vec<f64>,
         max_decay_rate: Vec<f64>,
-        /// Held sparse: the bound of the poles considered and how the threshold was found.
-        held: Option<(f64, Box<stability_large::Bounded>)>,
+        /// Held sparse: the bound of the poles considered and how the threshold was found (on
+        /// a reduction; none on supports over whirl frequency, whose consistent poles are the
+        /// full model's).
+        held: Option<(f64, Option<Box<stability_large::Bounded>>)>,
     },
     Damping {
         matrices: Box<ModelMatrices>,
@@ -281,46 +284,7 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
             model,
             speeds,
             held,
-        } => {
-            if let Some((bound, max_states)) = *held {
-                let system = assemble(model)?;
-                let r = stability_large::stability_large(
-                    &system,
-                    &model.damping,
-                    speeds.as_slice(),
-                    bound,
-                    max_states,
-                    control,
-                )
-                .map_err(|e| match e {
-                    AnalysisError::Damping(e) => damping_error(e, &model.rotor),
-                    e => e.into(),
-                })?;
-                return Ok(Outcome::Stability {
-                    threshold: r.threshold.clone(),
-                    speeds: speeds.as_slice().to_vec(),
-                    max_decay_rate: r.max_decay_rate.clone(),
-                    held: Some((bound, Box::new(r))),
-                });
-            }
-            let system = assemble(model)?;
-            let (threshold, max_decay_rate) = if system.frequency_dependent() {
-                let at =
-                    campbell_whirl::consistent_poles(&system, &model.damping, f64::INFINITY, false);
-                stability::curve_of(&at, speeds.as_slice(), control)
-                    .map_err(|e| rigid_body(e, &model.rotor))?
-            } else {
-                let damped = DampedModel::build(&system, &model.damping)
-                    .map_err(|e| damping_error(e, &model.rotor))?;
-                stability::stability_curve(&damped, speeds.as_slice(), control)?
-            };
-            Ok(Outcome::Stability {
-                threshold,
-                speeds: speeds.as_slice().to_vec(),
-                max_decay_rate,
-                held: None,
-            })
-        }
+        } => threshold::run_stability(model, speeds.as_slice(), *held, control),
         TaskKind::Damping {
             model,
             state_form,

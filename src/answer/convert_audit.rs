@@ -132,6 +132,7 @@ pub fn level1(
         region: screen.as_ref().and_then(|s| s.region.map(String::from)),
         level2: None,
         reduction: None,
+        max_residual: r.residual,
         model: model.into(),
         warnings: vec![],
     }

@@ -58,8 +58,10 @@ impl Output {
                 let mut s = convert::stability(threshold.as_ref(), &speeds, max_decay_rate);
                 if let Some((bound, r)) = held {
                     s.max_frequency = Some(bound);
-                    s.reduction = Some(convert::reduction(&r.reduction));
-                    s.threshold_closed = threshold.is_some().then_some(r.closed);
+                    s.reduction = r.as_ref().map(|r| convert::reduction(&r.reduction));
+                    // Without a reduction the threshold is the full model's.
+                    let closed = r.as_ref().is_none_or(|r| r.closed);
+                    s.threshold_closed = threshold.is_some().then_some(closed);
                 }
                 s
             }),

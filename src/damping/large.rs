@@ -307,6 +307,24 @@ pub fn problems(
     })
 }
 
+/// The hysteretic model's problem at a forward crossing of the 1x line: the rotating loss's
+/// sign there 0, the mean of its two problems (`analysis::criticals`), every root accepted.
+pub fn crossing_problem(system: &RotorSystem, speed: f64) -> Option<Problem> {
+    let parts = parts(system, &DampingModel::Hysteretic, speed)?;
+    let counter = match system.layout() {
+        Layout::Doubled => 1.0,
+        _ => 0.0,
+    };
+    Some(Problem {
+        size: parts.size,
+        mass: parts.mass.clone(),
+        damping: parts.damping.clone(),
+        stiffness: parts.stiffness((1.0, 0.0, counter)),
+        signs: None,
+        terms: None,
+    })
+}
+
 /// `(A - sigma I)^-1` of one problem's first-order form, through a sparse factor of `Z0(sigma)`
 /// and, with dampers, the Woodbury identity for their low-rank term `L W R^H`:
 /// `Z^-1 = Z0^-1 - Y (I + W R^H Y)^-1 W R^H Z0^-1`, `Y = Z0^-1 L` (one solve per column).

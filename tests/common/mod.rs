@@ -1,6 +1,7 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 
+pub mod over_whirl;
 pub mod ross;
 pub mod server;
 

@@ -22,6 +22,9 @@
 //!   table segment is scanned at a few points for sign changes of `g(w) = w_m(k(w)) - w` and
 //!   each bracket is closed by Brent's method to 1e-10 relative. Since `g(0) >= 0` and `g`
 //!   falls as `-w` beyond the table, every mode has at least one such speed.
+//! - tabulated over whirl frequency: read synchronously (speed = frequency = `w`: a critical
+//!   speed whirls at the speed), the same search from rest over every speed and frequency of
+//!   the table, continued past its last along its end slopes.
 
 use crate::analysis::AnalysisError;
 use crate::analysis::control::Control;
@@ -30,6 +33,7 @@ use crate::fem::assembly;
 use crate::linalg::{self, LinalgError, RMat, Sparse, lanczos};
 use crate::model::limits::map_is_sparse;
 use crate::model::rotor::BeamRotor;
+use crate::model::supports::grid::Grid;
 use crate::model::supports::{GeneralSupport, Law, Matrix2};
 
 /// Where a mode meets a support's actual stiffness.
@@ -326,15 +330,55 @@ fn curves(rotor: &BeamRotor) -> Vec<Curve<'_>> {
                     out.push(curve("kyy", Coefficient::Table(g, |k| k.yy)));
                 }
             }
-            // A map's task refuses supports over whirl frequency (`model::task`).
-            Law::Grid(_) | Law::Read { .. } => {}
+            // Over whirl frequency: read synchronously (a critical speed whirls at the speed).
+            Law::Grid(grid) => {
+                out.push(curve("kxx", Coefficient::Table(g, |k| k.xx)));
+                let differs = knots(grid).iter().any(|&w| {
+                    let k = g.at(w).k;
+                    k.yy != k.xx
+                });
+                if differs {
+                    out.push(curve("kyy", Coefficient::Table(g, |k| k.yy)));
+                }
+            }
+            Law::Read { .. } => {}
         }
     }
     out.sort_by_key(|c| c.support);
     out
 }
 
-/// Per mode, the `(k(w), w)` with `w_m(k(w)) = w` on a tabulated coefficient, by speed.
+/// Where a table over whirl frequency's synchronous reading is scanned from: rest, and every
+/// speed and frequency it is given at.
+fn knots(g: &Grid) -> Vec<f64> {
+    let mut v: Vec<f64> = std::iter::once(0.0)
+        .chain(g.speeds.iter().copied())
+        .chain(g.frequencies.iter().copied())
+        .collect();
+    v.sort_by(f64::total_cmp);
+    v.dedup();
+    v
+}
+
+/// Doublings of the last knot a table over whirl frequency is scanned past it to: read along
+/// its end slopes there, its stiffness keeps changing, and the map's frequency `w_m(k)` (at
+/// most the rigid-support one) falls behind `w` within a few.
+const DOUBLINGS: usize = 10;
+
+/// `SCAN` points in each interval of `knots` after the first, the first too.
+fn subdivided(knots: &[f64]) -> Vec<f64> {
+    let mut grid = vec![knots[0]];
+    for p in knots.windows(2) {
+        grid.extend((1..=SCAN).map(|j| p[0] + (p[1] - p[0]) * j as f64 / SCAN as f64));
+    }
+    grid
+}
+
+/// Per mode, the `(k(w), w)` with `w_m(k(w)) = w` on a tabulated coefficient, by speed. A
+/// table over speed alone is held past its ends; one over whirl frequency is read
+/// synchronously from rest, past its ends along its end slopes (scanned up to [`DOUBLINGS`]
+/// doublings of its last knot while a mode is still above the line, and where its stiffness
+/// stays positive: the map has no point elsewhere).
 fn on_table(
     map: &Springs,
     s: &GeneralSupport,
@@ -342,23 +386,40 @@ fn on_table(
     control: &Control,
 ) -> Result<Vec<Vec<(f64, f64)>>, AnalysisError> {
     let k = |w: f64| pick(&s.at(w).k);
-    let speeds = s.speeds();
-    let mut grid = vec![speeds[0]];
-    for p in speeds.windows(2) {
-        grid.extend((1..=SCAN).map(|j| p[0] + (p[1] - p[0]) * j as f64 / SCAN as f64));
-    }
+    let held = s.grid().is_none();
+    let mut grid = match s.grid() {
+        Some(g) => subdivided(&knots(g)),
+        None => subdivided(s.speeds()),
+    };
     // The frequencies at every grid point, all modes from one eigen solve.
-    let mut f = Vec::with_capacity(grid.len());
-    for &w in &grid {
+    let mut f: Vec<Vec<f64>> = Vec::with_capacity(grid.len());
+    let mut i = 0;
+    let mut doublings = 0;
+    while i < grid.len() {
         control.check()?;
-        f.push(map.at(k(w))?);
+        let kw = k(grid[i]);
+        if !held && kw <= 0.0 {
+            grid.truncate(i);
+            break;
+        }
+        f.push(map.at(kw)?);
+        i += 1;
+        let above = |f: &[f64], w: f64| f.iter().any(|&fm| fm > w);
+        if !held && i == grid.len() && doublings < DOUBLINGS && above(&f[i - 1], grid[i - 1]) {
+            let last = grid[i - 1];
+            grid.extend(subdivided(&[last, 2.0 * last.max(1.0)]).into_iter().skip(1));
+            doublings += 1;
+        }
     }
     let mut out = vec![vec![]; map.modes];
-    let last = grid.len() - 1;
+    let Some(last) = grid.len().checked_sub(1) else {
+        return Ok(out);
+    };
     for (m, roots) in out.iter_mut().enumerate() {
         let g = |i: usize| f[i][m] - grid[i];
-        // Below the table k is held at its first value: the root is that frequency itself.
-        if f[0][m] < grid[0] {
+        // Below a table over speed k is held at its first value: the root is that frequency
+        // itself.
+        if held && f[0][m] < grid[0] {
             roots.push((k(grid[0]), f[0][m]));
         }
         for i in 0..=last {
@@ -373,7 +434,7 @@ fn on_table(
                 roots.push((k(w), w));
             }
         }
-        if f[last][m] > grid[last] {
+        if held && f[last][m] > grid[last] {
             roots.push((k(grid[last]), f[last][m]));
         }
     }

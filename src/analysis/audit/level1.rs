@@ -12,10 +12,18 @@
 //! `q0`, where its decay rate changes sign, is bracketed on the requested grid (extended by
 //! doubling up to 1000 times its end when the grid stays stable) and refined by the Illinois
 //! method to 1e-9 relative.
+//!
+//! On supports over whirl frequency every candidate is a pole consistent with the frequency it
+//! reads them at ([`modal_consistent`]: continued from the rotor read synchronously), in a box
+//! of [`WHIRL_BOX`] times the synchronous reading's first forward mode (the box of a rotor
+//! held sparse where it is): q0 is then where the consistent pole crosses `Re s = 0`, for a
+//! Jeffcott rotor `q0 = c(w*) w*` with `k(w*) = m w*^2`.
+
+use std::cell::Cell;
 
 use crate::analysis::AnalysisError;
 use crate::analysis::control::Control;
-use crate::analysis::modal::large_poles;
+use crate::analysis::modal::{large_poles, modal_consistent};
 use crate::analysis::poles::{Pole, Whirl, overdamped, poles_at};
 use crate::damping::dampers::{ModalDampers, Projected};
 use crate::damping::{DampedModel, DampingError};
@@ -35,6 +43,9 @@ pub struct Level1 {
     /// Without cross-coupling.
     pub base: ForwardPole,
     pub q0: Option<f64>,
+    /// On supports over whirl frequency: the largest residual of a first forward pole found
+    /// ([`crate::analysis::consistent`]).
+    pub residual: Option<f64>,
 }
 
 /// Where the cross-coupling acts: `(degree of freedom of the translation, share)`.
@@ -120,6 +131,11 @@ pub fn screen(
     }
 }
 
+/// The box the poles are made consistent in on supports over whirl frequency, times the
+/// modulus of the synchronous reading's first forward mode: cross-coupling up to twice q0 and
+/// the consistency move it by far less.
+pub const WHIRL_BOX: f64 = 3.0;
+
 /// Relative tolerance of `q0`.
 const Q_TOL: f64 = 1e-9;
 
@@ -147,6 +163,10 @@ pub struct FirstForward<'a> {
     given: Option<&'a Projected>,
     /// Held sparse: the equivalent or nonviscous model's dampers, found once for every q.
     dampers: Option<&'a ModalDampers>,
+    /// On supports over whirl frequency: the box its consistent poles are found in.
+    whirl: Option<f64>,
+    /// The largest residual of a consistent first forward pole chosen so far.
+    residual: Cell<f64>,
 }
 
 impl<'a> FirstForward<'a> {
@@ -212,6 +232,19 @@ impl<'a> FirstForward<'a> {
         (bound, dampers): (Option<f64>, Option<&'a ModalDampers>),
         given: Option<&'a Projected>,
     ) -> Result<Self, AnalysisError> {
+        let whirl = match (system.frequency_dependent(), bound) {
+            (false, _) => None,
+            (true, Some(b)) => Some(b),
+            (true, None) => {
+                let synchronous = system.read(speed, speed);
+                let first = poles_at(&built(&synchronous, damping, given)?, speed)?
+                    .rotor
+                    .into_iter()
+                    .filter(first_forward_candidate)
+                    .min_by(|a, b| a.frequency().total_cmp(&b.frequency()));
+                Some(first.map_or(f64::INFINITY, |p| WHIRL_BOX * p.s.norm()))
+            }
+        };
         let mut first = Self {
             system,
             damping,
@@ -221,12 +254,24 @@ impl<'a> FirstForward<'a> {
             bound,
             given,
             dampers,
+            whirl,
+            residual: Cell::new(0.0),
         };
-        first.reference = first
+        let reference = first
             .candidates(0.0)?
             .into_iter()
-            .min_by(|a, b| a.frequency().total_cmp(&b.frequency()));
+            .min_by(|a, b| a.0.frequency().total_cmp(&b.0.frequency()));
+        if let Some((_, r)) = &reference {
+            first.residual.set(*r);
+        }
+        first.reference = reference.map(|(p, _)| p);
         Ok(first)
+    }
+
+    /// On supports over whirl frequency, the largest residual of a consistent first forward
+    /// pole found so far.
+    pub fn residual(&self) -> Option<f64> {
+        self.whirl.map(|_| self.residual.get())
     }
 
     /// `|s|` of the first forward pole without cross-coupling.
@@ -250,31 +295,56 @@ impl<'a> FirstForward<'a> {
             return Ok(self.base());
         }
         let candidates = self.candidates(q)?;
-        let shapes: Vec<&[c64]> = candidates.iter().map(|p| p.shape.as_slice()).collect();
+        let shapes: Vec<&[c64]> = candidates.iter().map(|p| p.0.shape.as_slice()).collect();
         let macs = linalg::mac_matrix(&[reference.shape.as_slice()], &shapes);
-        let cost = |(p, mac): (&Pole, &f64)| {
+        let cost = |((p, _), mac): (&(Pole, f64), &f64)| {
             (1.0 - mac) + (reference.s - p.s).norm() / reference.s.norm().max(p.s.norm())
         };
-        Ok(candidates
+        let chosen = candidates
             .iter()
             .zip(&macs[0])
-            .min_by(|a, b| cost(*a).total_cmp(&cost(*b)))
-            .map(|(p, _)| (p.decay_rate(), p.frequency())))
+            .min_by(|a, b| cost(*a).total_cmp(&cost(*b)));
+        Ok(chosen.map(|((p, r), _)| {
+            self.residual.set(self.residual.get().max(*r));
+            (p.decay_rate(), p.frequency())
+        }))
     }
 
-    /// The forward rotor poles that oscillate and are not overdamped, at `q`.
-    fn candidates(&self, q: f64) -> Result<Vec<Pole>, AnalysisError> {
+    /// The forward rotor poles that oscillate and are not overdamped, at `q`, each with its
+    /// residual on supports over whirl frequency (0 on others).
+    fn candidates(&self, q: f64) -> Result<Vec<(Pole, f64)>, AnalysisError> {
         let s = coupled(self.system, &self.at, q);
-        let set = match self.bound {
-            Some(bound) => large_poles(&s, self.damping, self.dampers, self.speed, bound)?,
-            None => poles_at(&built(&s, self.damping, self.given)?, self.speed)?,
+        let (set, residuals) = match (self.whirl, self.bound) {
+            (Some(b), held) => {
+                let r = modal_consistent(&s, self.damping, self.speed, b, held.is_some())?;
+                (
+                    r.poles,
+                    r.consistency.map(|c| c.residuals).unwrap_or_default(),
+                )
+            }
+            (None, Some(bound)) => (
+                large_poles(&s, self.damping, self.dampers, self.speed, bound)?,
+                vec![],
+            ),
+            (None, None) => (
+                poles_at(&built(&s, self.damping, self.given)?, self.speed)?,
+                vec![],
+            ),
         };
         Ok(set
             .rotor
             .into_iter()
-            .filter(|p| p.whirl == Whirl::Forward && p.oscillates() && !overdamped(p.s))
+            .enumerate()
+            .map(|(i, p)| (p, residuals.get(i).copied().unwrap_or(0.0)))
+            .filter(|(p, _)| first_forward_candidate(p))
             .collect())
     }
+}
+
+/// Whether a pole may be the first forward mode: a forward rotor pole that oscillates and is
+/// not overdamped.
+fn first_forward_candidate(p: &Pole) -> bool {
+    p.whirl == Whirl::Forward && p.oscillates() && !overdamped(p.s)
 }
 
 /// The damping model of `system`: built on its own modes, or with the `given` projection.
@@ -434,7 +504,12 @@ pub fn level1_of(
             }
         }
     };
-    Ok(Level1 { curve, base, q0 })
+    Ok(Level1 {
+        curve,
+        base,
+        q0,
+        residual: first.residual(),
+    })
 }
 
 /// The zero of the decay rate in `[a, b]` (`fa < 0 <= fb`), by the Illinois method.

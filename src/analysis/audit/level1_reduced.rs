@@ -29,6 +29,7 @@
 use super::level1::{
     self, FirstForward, Level1, Placing, auto_range_of, built, coupled, level1_of,
 };
+use super::level2::HELD_BOX;
 use crate::analysis::AnalysisError;
 use crate::analysis::control::Control;
 use crate::analysis::large;
@@ -127,6 +128,25 @@ pub fn level1_reduced(
             reduction: None,
         })
     };
+    // On supports over whirl frequency each pole is continued to consistency through sparse
+    // factors of the rotor read at its frequency, on the full model (a reduction's basis would
+    // be one reading's): dense, or held sparse in level II's box.
+    if system.frequency_dependent() {
+        let first = match held {
+            true => {
+                let lowest = large::lowest(system, 1, |_| 0.0)?.omega[0];
+                FirstForward::held(system, damping, speed, at, HELD_BOX * lowest, None)?
+            }
+            false => FirstForward::new(system, damping, speed, at)?,
+        };
+        let (qs, result, qa) = run(&first)?;
+        return Ok(Screened {
+            qs,
+            result,
+            qa,
+            reduction: None,
+        });
+    }
     if !reduce {
         return whole();
     }

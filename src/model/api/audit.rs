@@ -415,6 +415,11 @@ pub struct Level1Response {
     /// (`"modal_reduction": false`, or no reduction passed its check).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub reduction: Option<Level1ReductionInfo>,
+    /// On supports over whirl frequency: the largest residual of a first forward pole found
+    /// (each consistent with the frequency it reads them at; the rotor's equation at it,
+    /// relative, as `/v1/modal`'s `residual`). Level I is then solved on the full model.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_residual: Option<f64>,
     pub model: String,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub warnings: Vec<String>,

@@ -73,10 +73,17 @@ pub struct ModelPlan {
 
 impl ReportRequest {
     /// The models compared: the request's, or H, E, NVD (with the request's options where it
-    /// is one of them) and viscous.
-    fn models(&self) -> Vec<DampingInput> {
+    /// is one of them) and viscous; on supports over whirl frequency (`whirl`), H and viscous,
+    /// the models whose poles and responses read them in the frequency domain.
+    fn models(&self, whirl: bool) -> Vec<DampingInput> {
         if let Some(m) = &self.models {
             return m.clone();
+        }
+        if whirl {
+            return vec![
+                DampingInput::Hysteretic(NoOptions {}),
+                DampingInput::Viscous(NoOptions {}),
+            ];
         }
         let nv = match &self.damping {
             DampingInput::Nonviscous(n) => n.clone(),
@@ -207,7 +214,11 @@ impl ReportRequest {
         let campbell = campbell_for(&self.damping)?;
         let unbalance = unbalance_for(&self.damping)?;
         let mut models = vec![];
-        for (i, d) in self.models().iter().enumerate() {
+        let whirl = rotor
+            .general_supports()
+            .iter()
+            .any(|g| g.frequency_dependent());
+        for (i, d) in self.models(whirl).iter().enumerate() {
             let level1 = Level1Request {
                 rotor: self.rotor.clone(),
                 damping: d.clone(),

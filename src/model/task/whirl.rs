@@ -5,12 +5,12 @@ use crate::model::damping::DampingModel;
 use crate::model::error::Invalid;
 
 impl Task {
-    /// Supports over whirl frequency are read by the analyses built for them (the modal
-    /// analysis, Campbell diagram and stability threshold, with poles consistent with their
-    /// own frequency; the harmonic responses, at the excitation frequency; the static
-    /// deflection, at 0) under the viscous and hysteretic models, and by the time response and
-    /// the damping matrices through their fit; anything else refuses them, naming the first
-    /// one's `frequencies`.
+    /// Supports over whirl frequency are read by every analysis: the modal analysis, Campbell
+    /// diagram, stability threshold and Level I and II with poles consistent with their own
+    /// frequency; the harmonic responses at the excitation frequency; the static deflection at
+    /// 0; the critical speed map synchronously (each under the viscous and hysteretic models:
+    /// the others are refused naming the first one's `frequencies`); the time response and the
+    /// damping matrices through their fit.
     pub(crate) fn whirl_read(&self) -> Result<(), Invalid> {
         let supports: &[crate::model::supports::GeneralSupport] = match &self.kind {
             TaskKind::CriticalMap { rotor, .. } => rotor.general_supports(),
@@ -32,28 +32,9 @@ impl Task {
                 None => Ok(()),
             };
         }
+        // Every other analysis reads it (modal, Campbell, stability, Level I and II, the
+        // harmonic responses, the critical speed map), under the models below.
         let path = format!("{}.frequencies", first.path());
-        let read = match &self.kind {
-            TaskKind::Modal { .. }
-            | TaskKind::Campbell { .. }
-            | TaskKind::Unbalance { .. }
-            | TaskKind::Frequency { .. } => true,
-            // Held sparse, a threshold is searched on a reduction built once.
-            TaskKind::Stability { held, .. } => held.is_none(),
-            _ => false,
-        };
-        if !read {
-            return Err(Invalid::one(
-                path,
-                format!(
-                    "a support whose coefficients depend on the whirl frequency is read by \
-                     `modal`, `campbell`, `stability` (not held sparse), `unbalance-response`, \
-                     `frequency-response`, `static`, `time-response` and `damping` so far, not \
-                     by `{}`",
-                    self.name()
-                ),
-            ));
-        }
         match self.model().map(|m| &m.damping) {
             Some(DampingModel::Viscous | DampingModel::Hysteretic) | None => Ok(()),
             Some(d) => Err(Invalid::one(
