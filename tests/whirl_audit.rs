@@ -396,4 +396,12 @@ async fn the_report_of_a_rotor_with_a_seal_over_whirl_frequency() {
         r["campbell"]["critical_speeds"]
     );
     assert!(!r["unbalance_cases"].as_array().unwrap().is_empty(), "{r}");
+    // The page's model table lists the seal and what its table is over: speed and frequency.
+    let (status, _, page) = common::post_as("/v1/report", &body, "text/html").await;
+    assert_eq!(status, 200);
+    let page = String::from_utf8(page).unwrap();
+    assert!(
+        page.contains("<th>seals</th><td>1: node 15: k 2.00e6..5.00e6 (Ω, ω) N/m"),
+        "no seal row"
+    );
 }

@@ -39,13 +39,16 @@ pub(crate) fn node_positions(b: &BeamInput) -> Vec<f64> {
     at
 }
 
-fn coefficient(c: &Option<Coefficient>) -> Option<String> {
+/// A coefficient's value or range; a list is over the speeds `Ω` or, for a table over whirl
+/// frequency alone (`over_frequency`), over the frequencies `ω`.
+fn coefficient(c: &Option<Coefficient>, over_frequency: bool) -> Option<String> {
     match c.as_ref()? {
         Coefficient::Number(v) if v.is_finite() => Some(format!("{v:.3e}")),
         Coefficient::Number(_) => None,
         Coefficient::Table(t) => {
             let (lo, hi) = super::range(t.iter().copied(), 0.0);
-            Some(format!("{lo:.2e}..{hi:.2e} (Ω)"))
+            let axis = if over_frequency { "ω" } else { "Ω" };
+            Some(format!("{lo:.2e}..{hi:.2e} ({axis})"))
         }
         Coefficient::Grid(g) => {
             let (lo, hi) = super::range(g.iter().flatten().copied(), 0.0);
@@ -59,8 +62,9 @@ pub(crate) fn support_stiffness(s: &SupportInput) -> String {
     if let Some(k) = s.stiffness.filter(|k| k.is_finite()) {
         return format!("k {k:.3e} N/m");
     }
-    let kxx = coefficient(&s.kxx);
-    let kyy = coefficient(&s.kyy);
+    let over_frequency = s.frequencies.is_some() && s.speeds.is_none();
+    let kxx = coefficient(&s.kxx, over_frequency);
+    let kyy = coefficient(&s.kyy, over_frequency);
     match (kxx, kyy) {
         (Some(a), Some(b)) if a != b => format!("kxx {a}, kyy {b} N/m"),
         (Some(a), _) => format!("k {a} N/m"),

@@ -85,6 +85,20 @@ pub(super) fn model_rows(report: &ReportResponse, rotor: &RotorInput) -> Vec<Str
                 "supports",
                 format!("{}: {}", b.supports.len(), sup.join("; ")),
             );
+            if !b.seals.is_empty() {
+                let seals: Vec<String> = b
+                    .seals
+                    .iter()
+                    .map(|s| {
+                        format!(
+                            "node {}: {}",
+                            s.node,
+                            crate::render::plot_audit::support_stiffness(s)
+                        )
+                    })
+                    .collect();
+                row("seals", format!("{}: {}", b.seals.len(), seals.join("; ")));
+            }
         }
         RotorInput::Jeffcott(_) => row("rotor", "Jeffcott rotor".into()),
         RotorInput::Matrices(_) => row("rotor", "given as matrices".into()),
