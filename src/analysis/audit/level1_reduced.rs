@@ -29,7 +29,7 @@
 use super::level1::{
     self, FirstForward, Level1, Placing, auto_range_of, built, coupled, level1_of,
 };
-use super::level2::HELD_BOX;
+use super::level2::held_box;
 use crate::analysis::AnalysisError;
 use crate::analysis::control::Control;
 use crate::analysis::large;
@@ -133,10 +133,7 @@ pub fn level1_reduced(
     // be one reading's): dense, or held sparse in level II's box.
     if system.frequency_dependent() {
         let first = match held {
-            true => {
-                let lowest = large::lowest(system, 1, |_| 0.0)?.omega[0];
-                FirstForward::held(system, damping, speed, at, HELD_BOX * lowest, None)?
-            }
+            true => FirstForward::held(system, damping, speed, at, held_box(system)?, None)?,
             false => FirstForward::new(system, damping, speed, at)?,
         };
         let (qs, result, qa) = run(&first)?;

@@ -20,6 +20,12 @@ use crate::system::RotorSystem;
 /// cross-coupling, stays well inside it, and the box holds few poles (each found exactly).
 pub const HELD_BOX: f64 = 3.0;
 
+/// The box of a rotor held sparse: [`HELD_BOX`] times its lowest undamped natural frequency at
+/// rest.
+pub fn held_box(system: &RotorSystem) -> Result<f64, AnalysisError> {
+    Ok(HELD_BOX * large::lowest(system, 1, |_| 0.0)?.omega[0])
+}
+
 /// A destabilising source of Level II, or their absence, or all of them.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Source {
@@ -61,10 +67,7 @@ pub fn level2(
     held: bool,
 ) -> Result<Vec<(Source, ForwardPole)>, AnalysisError> {
     let bound = match held {
-        true => {
-            let basis = crate::analysis::large::lowest(system, 1, |_| 0.0)?;
-            Some(HELD_BOX * basis.omega[0])
-        }
+        true => Some(held_box(system)?),
         false => None,
     };
     let mut bare = system.clone();

@@ -70,24 +70,9 @@ pub(super) fn model_rows(report: &ReportResponse, rotor: &RotorInput) -> Vec<Str
                     )
                 },
             );
-            let sup: Vec<String> = b
-                .supports
-                .iter()
-                .map(|s| {
-                    format!(
-                        "node {}: {}",
-                        s.node,
-                        crate::render::plot_audit::support_stiffness(s)
-                    )
-                })
-                .collect();
-            row(
-                "supports",
-                format!("{}: {}", b.supports.len(), sup.join("; ")),
-            );
-            if !b.seals.is_empty() {
-                let seals: Vec<String> = b
-                    .seals
+            // `count: node n: stiffness; ...` of the supports, and of the seals when there are any.
+            let listed = |list: &[crate::model::api::SupportInput]| {
+                let each: Vec<String> = list
                     .iter()
                     .map(|s| {
                         format!(
@@ -97,7 +82,11 @@ pub(super) fn model_rows(report: &ReportResponse, rotor: &RotorInput) -> Vec<Str
                         )
                     })
                     .collect();
-                row("seals", format!("{}: {}", b.seals.len(), seals.join("; ")));
+                format!("{}: {}", list.len(), each.join("; "))
+            };
+            row("supports", listed(&b.supports));
+            if !b.seals.is_empty() {
+                row("seals", listed(&b.seals));
             }
         }
         RotorInput::Jeffcott(_) => row("rotor", "Jeffcott rotor".into()),
