@@ -112,7 +112,7 @@ pub fn large_poles(
         })?;
     // Each closed by shift-invert at itself: Arnoldi about one shift places a non-normal
     // model's poles far from it to about 1e-8 only (the doubled model's on cross-coupled
-    // bearings, `tests/modal_large.rs`), a factor at the pole to round-off.
+    // bearings, `tests/it/modal_large.rs`), a factor at the pole to round-off.
     let full = Full::Sparse {
         system,
         damping,

@@ -7,7 +7,7 @@
 //! neither `A` nor `M^-1` formed) finds every eigenvalue within a disc that covers the box, at a
 //! cost of a few tens of solves instead of `O((2n + p)^3)`: on the 404-state compressor 7 ms
 //! instead of 110, the rotor poles of its 1616-state nonviscous model in 0.4 s instead of
-//! 5.8 (`tests/nearest.rs`).
+//! 5.8 (`tests/it/nearest.rs`).
 //! The shift sits off both axes (a free rotor's rigid-body poles at 0, mirror pairs on the real
 //! axis), at a hundredth of the bound. Where Arnoldi would need a space as large as half the
 //! problem the dense solve is as cheap, and the caller falls back to it.

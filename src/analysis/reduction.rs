@@ -337,7 +337,7 @@ pub(super) fn distance(from: &[c64], to: &[c64], criterion: Criterion) -> f64 {
 /// no counterpart, while their effect on the rotor poles is compared. Comparing the rotor poles
 /// also lets the full model's be found by shift-invert Arnoldi: its internal poles include
 /// ill-conditioned ones only the dense solve places to 1e-7 (a 1616-state model's rotor poles
-/// in 0.4 s instead of 5.8, `tests/nearest.rs`).
+/// in 0.4 s instead of 5.8, `tests/it/nearest.rs`).
 pub(super) fn compared_at(model: &DampedModel, speed: f64) -> Result<Vec<c64>, LinalgError> {
     match &model.kind {
         // A support's fitted branches are poles of the support, compared like the rotor's.

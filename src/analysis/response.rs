@@ -39,7 +39,7 @@ pub use sweeps::{frequency_sweep, unbalance_force, unbalance_sweep};
 
 /// Largest difference between the reduced and the full response allowed at a checked
 /// frequency, relative to the largest response there: ten times below the 1e-6 the reduced
-/// response is held to everywhere between the checked points (tests/response.rs).
+/// response is held to everywhere between the checked points (tests/it/response.rs).
 pub const TOLERANCE: f64 = 1e-7;
 
 /// How a harmonic response was reduced.

@@ -11,6 +11,7 @@ use crate::analysis::audit::statics::StaticResult;
 use crate::analysis::run::CaseOutcome;
 use crate::analysis::unbalance::Orbit;
 use crate::model::api;
+use crate::model::task::CampbellTask;
 use crate::model::task::ReportPlan;
 use crate::model::task::TaskKind;
 
@@ -380,7 +381,7 @@ pub fn report(
     };
     let (lo, hi) = plan.range;
     let stop = match &plan.campbell.kind {
-        TaskKind::Campbell { speeds, .. } => speeds.range().1,
+        TaskKind::Campbell(CampbellTask { speeds, .. }) => speeds.range().1,
         _ => hi,
     };
     let mut models = vec![];

@@ -21,6 +21,7 @@ use crate::analysis::run::{CaseOutcome, Outcome, run};
 use crate::model::Task;
 use crate::model::api::{BearingSetReport, ReportCheck, ReportResponse};
 use crate::model::limits::BYTES_PER_VALUE;
+use crate::model::task::ModalTask;
 use crate::model::task::ReportPlan;
 use crate::model::task::TaskKind;
 
@@ -30,12 +31,12 @@ impl Output {
         Ok(match o {
             Outcome::Modal(r) => Output::Modal({
                 let mut m = convert::modal(&r);
-                if let TaskKind::Modal {
+                if let TaskKind::Modal(ModalTask {
                     model,
                     max_frequency,
                     sparse,
                     ..
-                } = &task.kind
+                }) = &task.kind
                 {
                     m.shaft = convert::shaft_layout(&model.rotor);
                     m.max_frequency = max_frequency.is_finite().then_some(*max_frequency);

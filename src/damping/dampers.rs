@@ -21,7 +21,7 @@
 //! The dense models keep every mode of the rotor (or the request's `modes`); a large rotor keeps
 //! the request's `modes` or every mode up to [`DAMPER_BAND`] times the analysis' bound (the
 //! dampers of higher modes shift the poles below the bound by less than the reduction's check,
-//! `tests/damping_large.rs` measures how much). A reduction of such a rotor carries the same
+//! `tests/it/damping_large.rs` measures how much). A reduction of such a rotor carries the same
 //! dampers projected on its basis ([`ModalDampers::projected`]), so its check against the full
 //! model measures the reduction alone.
 

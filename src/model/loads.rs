@@ -267,7 +267,7 @@ pub struct TimeSpec {
 
 /// The angle the loads may turn in one step of the exponential integrator at tolerance `tol`:
 /// ETD-RK4's error on a harmonic load goes as `theta^4`; `theta = 0.2` at `tol = 1e-6` keeps
-/// the response within about `tol` of its peak (`tests/exponential.rs`).
+/// the response within about `tol` of its peak (`tests/it/exponential.rs`).
 pub fn step_angle(tol: f64) -> f64 {
     (0.2 * (tol / 1e-6).powf(0.25)).clamp(0.02, 0.5)
 }

@@ -1,6 +1,7 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 
+pub mod kept;
 pub mod over_whirl;
 pub mod ross;
 pub mod server;
@@ -28,6 +29,16 @@ pub async fn post_json(uri: &str, body: &serde_json::Value) -> (u16, serde_json:
 
 /// POSTs `body` asking for `accept`: status, content type and body.
 pub async fn post_as(uri: &str, body: &serde_json::Value, accept: &str) -> (u16, String, Vec<u8>) {
+    post_to(whirl::service::Config::default(), uri, body, accept).await
+}
+
+/// POSTs `body` to the in-process app of `config`: status, content type and body.
+pub async fn post_to(
+    config: whirl::service::Config,
+    uri: &str,
+    body: &serde_json::Value,
+    accept: &str,
+) -> (u16, String, Vec<u8>) {
     use http_body_util::BodyExt;
     use tower::ServiceExt;
     let req = axum::http::Request::builder()
@@ -37,10 +48,7 @@ pub async fn post_as(uri: &str, body: &serde_json::Value, accept: &str) -> (u16,
         .header("accept", accept)
         .body(axum::body::Body::from(body.to_string()))
         .unwrap();
-    let resp = whirl::service::app(whirl::service::Config::default())
-        .oneshot(req)
-        .await
-        .unwrap();
+    let resp = whirl::service::app(config).oneshot(req).await.unwrap();
     let status = resp.status().as_u16();
     let ctype = resp
         .headers()

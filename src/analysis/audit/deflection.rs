@@ -17,7 +17,7 @@
 //! The `N` are the element's own (interdependent) shape functions, and the end values of an
 //! element with its consistent load are exact for a uniform load, so the curve is exact too:
 //! a simply supported shaft gives `q x (L^3 - 2 L x^2 + x^3) / (24 E I) + q chi x (L - x) / (2 G A)`
-//! at every point, nodes or not, to 1e-9 (tests/audit_ross.rs). Joining the nodes straight is
+//! at every point, nodes or not, to 1e-9 (tests/it/audit_ross.rs). Joining the nodes straight is
 //! not: Example 1 on pins deflects 63.6 um at mid-span, inside its middle element, where its
 //! nodes reach 55.2 um (13% less).
 

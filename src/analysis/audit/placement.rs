@@ -55,8 +55,9 @@ pub struct Journal {
 pub enum Rule {
     /// One antinode between the bearings: W the sum of the journal loads.
     OneAntinode,
-    /// One of two antinodes: W its nearest journal's load.
-    TwoAntinodes,
+    /// One of two antinodes: W its nearest journal's load; `opposed` where the lobes move in
+    /// opposition (the unbalances 180 degrees apart), else in phase.
+    TwoAntinodes { opposed: bool },
     /// Outboard of the bearings: W the overhung mass.
     Overhung,
 }
@@ -65,7 +66,13 @@ impl Rule {
     pub fn name(self) -> &'static str {
         match self {
             Rule::OneAntinode => "one antinode: W the sum of the journal static loads",
-            Rule::TwoAntinodes => "two antinodes, 180 degrees apart: W the nearest journal's load",
+            Rule::TwoAntinodes { opposed: true } => {
+                "two antinodes, 180 degrees apart (the lobes move in opposition): W the nearest \
+                 journal's load"
+            }
+            Rule::TwoAntinodes { opposed: false } => {
+                "two antinodes, in phase (the lobes move together): W the nearest journal's load"
+            }
             Rule::Overhung => "overhung: W the mass outboard of the nearest bearing",
         }
     }
@@ -181,6 +188,7 @@ pub fn place(
     major.sort_by_key(|&(i, _)| i);
     let total: f64 = journals.iter().map(|j| j.load).sum::<f64>() / g;
     let first_sign = major.first().map_or(1.0, |m| m.1);
+    let opposed = major.iter().any(|m| m.1 != first_sign);
     major
         .iter()
         .map(|&(i, sign)| {
@@ -198,7 +206,7 @@ pub fn place(
                             .total_cmp(&(b.position - p.position).abs())
                     })
                     .map_or(total, |j| j.load / g);
-                (nearest, Rule::TwoAntinodes)
+                (nearest, Rule::TwoAntinodes { opposed })
             };
             Placed {
                 node: p.node,
@@ -298,7 +306,10 @@ mod tests {
         // between-bearings rotor, each with its nearest journal's load.
         let u = place(&p, &journals(), &|_| None, 10_000.0, G);
         assert_eq!((u[0].node, u[1].node), (0, 8));
-        assert!(u.iter().all(|u| u.rule == Rule::TwoAntinodes));
+        assert!(
+            u.iter()
+                .all(|u| u.rule == Rule::TwoAntinodes { opposed: true })
+        );
         assert!((u[0].weight - 300.0 / G).abs() < 1e-12);
         assert!((u[1].weight - 500.0 / G).abs() < 1e-12);
         // Between the bearings: the nearest journal's load each.
@@ -307,7 +318,25 @@ mod tests {
         assert_eq!((u[0].node, u[1].node), (2, 6));
         assert!((u[0].weight - 300.0 / G).abs() < 1e-12);
         assert!((u[1].weight - 500.0 / G).abs() < 1e-12);
-        assert_eq!(u[0].rule, Rule::TwoAntinodes);
+        assert_eq!(u[0].rule, Rule::TwoAntinodes { opposed: true });
+        assert!(u[0].rule.name().contains("180 degrees apart"));
+    }
+
+    #[test]
+    fn a_third_mode_with_its_outer_lobes_in_phase_is_said_to_be_loaded_in_phase() {
+        // A symmetric rotor's third mode between the bearings: the outer lobes move together,
+        // the middle one against them at a half. The two largest lobes (nodes 2 and 6) are
+        // loaded at phase 0 both, and the rule's text must say so, not "180 degrees apart".
+        let p = profile(&[0.0, 0.9, 1.0, 0.3, -0.5, 0.3, 1.0, 0.9, 0.0]);
+        let u = place(&p, &journals(), &|_| None, 10_000.0, G);
+        assert_eq!((u[0].node, u[1].node), (2, 6));
+        assert_eq!((u[0].phase, u[1].phase), (0.0, 0.0));
+        assert!(
+            u.iter()
+                .all(|u| u.rule == Rule::TwoAntinodes { opposed: false })
+        );
+        let text = u[0].rule.name();
+        assert!(text.contains("in phase") && !text.contains("180"), "{text}");
     }
 
     #[test]

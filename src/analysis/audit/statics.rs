@@ -34,7 +34,7 @@
 //! `g rho A l`, uniform, at its centre). ROSS's signs: shear = minus the upward forces to the
 //! left, moment `M(z) = -(sum F_i (z - z_i))`, negative sagging. ROSS's recursion (trapezoid
 //! rule on a shear linear in each element, last element closed by equilibrium) is exact for
-//! uniform elements, so these values are ROSS's up to round-off (tests/audit_ross.rs: 1e-12
+//! uniform elements, so these values are ROSS's up to round-off (tests/it/audit_ross.rs: 1e-12
 //! relative on its two rotors); the moment at the right end is 0 up to the round-off of the
 //! reactions, where ROSS sets it to 0.
 

@@ -1,8 +1,10 @@
 //! The report: its analyses two at a time, its unbalance cases, and its bearing sets.
 
 use super::*;
+use crate::analysis::modal;
 use crate::analysis::poles::{PoleSet, poles_at};
 use crate::linalg::c64;
+use crate::model::task::UnbalanceTask;
 
 /// A report's parts, its unbalance cases and, for each bearing set, the same.
 ///
@@ -12,7 +14,13 @@ use crate::linalg::c64;
 /// Each analysis fills a share of the progress in proportion to its estimated work (the
 /// cases take [`MAX_CASES`] unbalance responses' share), so progress never goes back when
 /// the next analysis announces its own work.
-pub(super) fn run_report(plan: &ReportPlan, control: &Control) -> Result<Outcome, RunError> {
+impl Analysis for ReportPlan {
+    fn run(&self, control: &Control) -> Result<Outcome, RunError> {
+        run_report(self, control)
+    }
+}
+
+fn run_report(plan: &ReportPlan, control: &Control) -> Result<Outcome, RunError> {
     let total = report_work(plan);
     let mut at = 0.0;
     let mut share = |work: f64| {
@@ -123,12 +131,12 @@ fn report_cases(
             result, gravity, ..
         },
         Outcome::Campbell(c),
-        TaskKind::Unbalance {
+        TaskKind::Unbalance(UnbalanceTask {
             model,
             speeds,
             range,
             ..
-        },
+        }),
     ) = (statics, campbell, &plan.unbalance.kind)
     else {
         return Err(RunError::Unsolvable("report: parts out of order".into()));
@@ -140,7 +148,7 @@ fn report_cases(
     // rotor held sparse in a box just holding the critical's pole.
     let sparse = matches!(
         plan.unbalance.kind,
-        TaskKind::Unbalance { sparse: true, .. }
+        TaskKind::Unbalance(UnbalanceTask { sparse: true, .. })
     );
     let (system, damped) = match sparse {
         true => (assemble(model)?, None),
@@ -183,7 +191,7 @@ fn report_cases(
         nodes.dedup();
         let task = Task {
             output_unit: Default::default(),
-            kind: TaskKind::Unbalance {
+            kind: TaskKind::Unbalance(UnbalanceTask {
                 model: model.clone(),
                 speeds: speeds.clone(),
                 unbalances: placed.iter().map(|p| (p.node, p.amount, p.phase)).collect(),
@@ -191,7 +199,7 @@ fn report_cases(
                 range: *range,
                 reduce: true,
                 sparse,
-            },
+            }),
             cost: plan.unbalance.cost,
             warnings: vec![],
         };

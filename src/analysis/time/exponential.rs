@@ -47,7 +47,7 @@ use crate::linalg::{self, CMat, RMat, c64};
 /// The largest step for tolerance `tol`, over the fastest spin speed `w`: the loads turn by
 /// `theta` radians a step ([`crate::model::loads::step_angle`], which the request's step
 /// estimate uses too). ETD-RK4's error on a harmonic load goes as `theta^4`; `theta = 0.2`
-/// at `tol = 1e-6` keeps the response within about `tol` of its peak (`tests/exponential.rs`:
+/// at `tol = 1e-6` keeps the response within about `tol` of its peak (`tests/it/exponential.rs`:
 /// 1.05e-6 from the closed form at constant speed, 1.0e-9 at `tol = 1e-9`).
 pub fn step_bound(tol: f64, w: f64) -> f64 {
     crate::model::loads::step_angle(tol) / w.max(f64::MIN_POSITIVE)
@@ -280,7 +280,7 @@ pub fn solve(
     // and rotating-damping terms do: `h |dOmega| |G| / |M|` stays below the step angle, and
     // three run-ups of `benches/forced_ross.py`'s rotors moved 4.8e-8, 4.1e-9 and 2.3e-9 of
     // their peaks from the 5% stages (4.8e-8, 4.1e-9, 5.6e-10 at 20%; Example 1's nonviscous
-    // run-up 2.6e-7 at 20% or 5%, `tests/exponential.rs`). Output intervals longer than that
+    // run-up 2.6e-7 at 20% or 5%, `tests/it/exponential.rs`). Output intervals longer than that
     // are cut, so that stages can end inside them.
     let steps_per_stage = 16 * size.max(8);
     let constant = state.schedule().is_none() && state.table_speeds().is_empty();

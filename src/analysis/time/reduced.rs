@@ -18,7 +18,7 @@
 //! speed: every pole exact, the step held by the spin speed of the loads and the drift's
 //! coupling, output samples inside a step by its dense output); TR-BDF2 only where a stage's
 //! state matrix cannot be diagonalised. Checked against the full model at tolerance 1e-8 in
-//! `tests/runup_reduction.rs`: the reduction moves the response by 4.3e-6 to 2.8e-5 of its
+//! `tests/it/runup_reduction.rs`: the reduction moves the response by 4.3e-6 to 2.8e-5 of its
 //! peak.
 //!
 //! [`ModalBasis::augmented_with`]: crate::fem::modal::ModalBasis::augmented_with
@@ -86,7 +86,7 @@ pub fn solve(
 /// solved exactly on the reduction), where a small one is solved exactly on its full model: a
 /// load that changes smoothly within the band is reproduced as a run-up is, but one that jumps
 /// rings every mode above the band at about its static deflection, which the static
-/// corrections do not hold (`tests/time_large.rs`: 2.5e-3 of the peak at the loaded node
+/// corrections do not hold (`tests/it/time_large.rs`: 2.5e-3 of the peak at the loaded node
 /// after a sudden release, 4.2e-5 for the same blow released over its rise time).
 pub fn solve_sparse(
     system: &RotorSystem,

@@ -44,7 +44,8 @@
 //!   (503 without waiting for a connection); only the server's own pings ([`Store::ping`], the
 //!   runner's upkeep every 250 ms) try the store until it answers, and the time the store came
 //!   back is kept ([`Store::health`]): a lease that ran out while nobody could renew it is not
-//!   a dead server's.
+//!   a dead server's. A client's request waits [`REQUEST_WAIT`] (1 s) at most for a shared
+//!   store, so the first call to meet a store whose packets are dropped fails within 1 s too.
 
 mod breaker;
 mod dir;
@@ -301,21 +302,47 @@ pub struct Store {
     breaker: breaker::Breaker,
 }
 
+/// How long a client's request waits for a shared store before it fails (503): a store whose
+/// packets are dropped would otherwise hold it for the pool's connection timeout (3 s). The
+/// server's own calls (the runner's claims, heartbeats and results) wait for the pool.
+pub const REQUEST_WAIT: Duration = Duration::from_secs(1);
+
 /// Runs `$call` on whichever engine is connected,
-/// through the breaker: at once 503 while the store is unreachable, but for a due probe.
+/// through the breaker: at once 503 while the store is unreachable, but for a due probe. A
+/// client's `request` waits [`REQUEST_WAIT`] at most for PostgreSQL; not answering by then
+/// opens the breaker, as an unreachable store does (the next probe closes it).
 macro_rules! on_engine {
-    ($self:ident, $e:ident => $call:expr) => {
-        on_engine!($self, false, $e => $call)
+    ($self:ident, request, $e:ident => $call:expr) => {
+        on_engine!(@run $self, false, Some(REQUEST_WAIT), $e => $call)
     };
-    ($self:ident, $probe:expr, $e:ident => $call:expr) => {{
+    ($self:ident, $e:ident => $call:expr) => {
+        on_engine!(@run $self, false, None, $e => $call)
+    };
+    ($self:ident, $probe:expr, $e:ident => $call:expr) => {
+        on_engine!(@run $self, $probe, None, $e => $call)
+    };
+    (@run $self:ident, $probe:expr, $wait:expr, $e:ident => $call:expr) => {{
         let pass = $self.breaker.enter($probe)?;
+        let wait: Option<Duration> = $wait;
         let r = match $self.engine().await {
             Err(e) => {
                 pass.done(true);
                 return Err(e);
             }
             Ok(Engine::Sqlite($e)) => $call.await,
-            Ok(Engine::Postgres($e)) => $call.await,
+            Ok(Engine::Postgres($e)) => match wait {
+                None => $call.await,
+                Some(wait) => match tokio::time::timeout(wait, $call).await {
+                    Ok(r) => r,
+                    Err(_) => {
+                        pass.done(true);
+                        return Err(StoreError(format!(
+                            "job store: no answer within {} ms",
+                            wait.as_millis()
+                        )));
+                    }
+                },
+            },
         };
         match r {
             Ok(v) => {
@@ -444,7 +471,7 @@ impl Store {
                 });
             }
             let inserted: Result<Inserted, StoreError> =
-                on_engine!(self, e => e.submit(job, queue));
+                on_engine!(self, request, e => e.submit(job, queue));
             let inserted = inserted?;
             match inserted {
                 Inserted::Row(row) => return Ok(Submitted::Queued(row)),
@@ -461,23 +488,23 @@ impl Store {
     /// The job an idempotency key names (however old: a key is free again once its job is
     /// deleted), with the hash of its request.
     async fn keyed(&self, key: &str) -> Result<Option<(JobRow, Option<String>)>, StoreError> {
-        on_engine!(self, e => e.keyed(key))
+        on_engine!(self, request, e => e.keyed(key))
     }
 
     /// Jobs by `filter`, newest first (finished ones within the retention).
     pub async fn list(&self, filter: &Filter) -> Result<Vec<JobRow>, StoreError> {
-        on_engine!(self, e => e.list(filter))
+        on_engine!(self, request, e => e.list(filter))
     }
 
     /// A job, unless unknown or finished longer ago than the retention.
     pub async fn get(&self, id: &str) -> Result<Option<JobRow>, StoreError> {
-        on_engine!(self, e => e.get(id))
+        on_engine!(self, request, e => e.get(id))
     }
 
     /// Records a queued or running job as cancelled with `error`, at once; `None` if it is not
     /// queued or running (unknown, or finished).
     pub async fn cancel(&self, id: &str, error: &Problem) -> Result<Option<JobRow>, StoreError> {
-        on_engine!(self, e => e.cancel(id, &problem_json(error)))
+        on_engine!(self, request, e => e.cancel(id, &problem_json(error)))
     }
 
     /// Claims the oldest queued job that fits `room` for `worker`, with a lease.
@@ -531,7 +558,7 @@ impl Store {
 
     /// Chunk `seq` of a job's result.
     pub async fn chunk(&self, id: &str, seq: i64) -> Result<Option<Vec<u8>>, StoreError> {
-        on_engine!(self, e => e.chunk(id, seq))
+        on_engine!(self, request, e => e.chunk(id, seq))
     }
 
     /// Jobs waiting in the queue, over all replicas.

@@ -5,7 +5,9 @@
 //! are not listed by `GET /v1/jobs`, and leave with their study (`ON DELETE CASCADE`) once
 //! every sample has been finished longer than the retention.
 
-use super::{Engine, Store, StoreError, breaker, problem_json};
+use std::time::Duration;
+
+use super::{Engine, REQUEST_WAIT, Store, StoreError, breaker, problem_json};
 use crate::jobs::pool::Lane;
 use crate::model::api::{JobStatus, Problem};
 
@@ -73,12 +75,12 @@ impl Store {
         samples: &[NewSample],
         queue: usize,
     ) -> Result<bool, StoreError> {
-        on_engine!(self, e => e.submit_study(study, samples, queue))
+        on_engine!(self, request, e => e.submit_study(study, samples, queue))
     }
 
     /// A study with its counts, unless unknown or purged.
     pub async fn study(&self, id: &str) -> Result<Option<StudyRow>, StoreError> {
-        on_engine!(self, e => e.study(id))
+        on_engine!(self, request, e => e.study(id))
     }
 
     /// The samples `from..from + count` of a study, by index (a page: their results are
@@ -89,7 +91,7 @@ impl Store {
         from: i64,
         count: i64,
     ) -> Result<Vec<SampleRow>, StoreError> {
-        on_engine!(self, e => e.study_samples(id, from, count))
+        on_engine!(self, request, e => e.study_samples(id, from, count))
     }
 
     /// Records a study as cancelled with `error` and cancels its queued and running samples;
@@ -99,6 +101,6 @@ impl Store {
         id: &str,
         error: &Problem,
     ) -> Result<Option<Vec<String>>, StoreError> {
-        on_engine!(self, e => e.cancel_study(id, &problem_json(error)))
+        on_engine!(self, request, e => e.cancel_study(id, &problem_json(error)))
     }
 }

@@ -95,7 +95,8 @@ pub enum StaticSupports {
 pub struct StaticRequest {
     /// A beam rotor.
     pub rotor: RotorInput,
-    /// Gravitational acceleration along -y, m/s^2 (default 9.8065).
+    /// Gravitational acceleration along -y, m/s^2 (default standard gravity, 9.80665; ROSS's
+    /// `run_static` uses 9.8065).
     #[serde(default)]
     pub gravity: Option<f64>,
     #[serde(default)]

@@ -2,6 +2,7 @@
 //! `stability`) and the damping model as matrices (`damping`).
 
 use super::*;
+use super::{CampbellTask, DampingTask, ModalTask, StabilityTask};
 
 impl ModalRequest {
     pub fn parse(&self, limits: &Limits) -> Result<Task, Invalid> {
@@ -41,12 +42,12 @@ impl ModalRequest {
         Task {
             output_unit: self.output_unit.unwrap_or_default(),
             warnings: model.warnings(speed, speed),
-            kind: TaskKind::Modal {
+            kind: TaskKind::Modal(ModalTask {
                 model,
                 speed,
                 max_frequency: bound.unwrap_or(f64::INFINITY),
                 sparse,
-            },
+            }),
             cost,
         }
         .bounded(limits, "rotor")
@@ -112,7 +113,7 @@ impl SweepRequest {
         let task = Task {
             output_unit: self.output_unit.unwrap_or_default(),
             warnings: model.warnings(lo, hi),
-            kind: TaskKind::Campbell {
+            kind: TaskKind::Campbell(CampbellTask {
                 model,
                 speeds,
                 max_frequency: self.max_frequency.map_or(f64::INFINITY, SpeedInput::rad_s),
@@ -120,7 +121,7 @@ impl SweepRequest {
                 reduce: self.modal_reduction.unwrap_or(true),
                 sparse,
                 max_states: sparse_states(limits),
-            },
+            }),
             cost,
         };
         if bounded {
@@ -154,11 +155,11 @@ impl SweepRequest {
         let task = Task {
             output_unit: self.output_unit.unwrap_or_default(),
             warnings: model.warnings(lo, hi),
-            kind: TaskKind::Stability {
+            kind: TaskKind::Stability(StabilityTask {
                 model,
                 speeds,
                 held,
-            },
+            }),
             cost,
         };
         task.whirl_read()?;
@@ -270,14 +271,14 @@ impl DampingMatricesRequest {
         Task {
             output_unit: Default::default(),
             warnings: model.warnings(speed, speed),
-            kind: TaskKind::Damping {
+            kind: TaskKind::Damping(DampingTask {
                 model,
                 state_form,
                 band,
                 max_deviation: auto,
                 max_states: limits.max_states,
                 speed,
-            },
+            }),
             cost,
         }
         .bounded(limits, "damping")

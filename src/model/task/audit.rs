@@ -2,6 +2,7 @@
 //! Level I and frequency response (the report that runs them all is in `report`).
 
 use super::loads::node_index;
+use super::{CriticalMapTask, FrequencyTask, Level1Task, StaticTask};
 use super::{Model, Task, TaskKind, sparse_harmonic_cost, sparse_sweep_cost, speed_at, sweep_cost};
 use crate::linalg::sparse::DENSE_UP_TO;
 use crate::model::api::{
@@ -161,11 +162,11 @@ impl CriticalSpeedMapRequest {
         Task {
             output_unit: self.output_unit.unwrap_or_default(),
             warnings: seal_note(&rotor, "the undamped critical speed map"),
-            kind: TaskKind::CriticalMap {
+            kind: TaskKind::CriticalMap(CriticalMapTask {
                 rotor,
                 stiffness,
                 modes: modes as usize,
-            },
+            }),
             cost,
         }
         .bounded(limits, "stiffness")
@@ -200,10 +201,16 @@ fn seal_note(rotor: &BeamRotor, analysis: &str) -> Vec<String> {
     }
 }
 
+/// Standard gravity (ISO 80000-3, CGPM 1901), m/s^2: the static analysis's default.
+pub const STANDARD_GRAVITY: f64 = 9.80665;
+
 impl StaticRequest {
     pub fn parse(&self, limits: &Limits) -> Result<Task, Invalid> {
         let mut bad = Invalid::default();
-        let g = bad.check("gravity", positive(self.gravity.unwrap_or(9.8065)));
+        let g = bad.check(
+            "gravity",
+            positive(self.gravity.unwrap_or(STANDARD_GRAVITY)),
+        );
         let speed = speed_at(&mut bad, "speed", self.speed.unwrap_or_default());
         // Held sparse past 600 unknowns (work linear in the mesh).
         let rotor = beam(&self.rotor, &limits.held_sparse(), bad)?;
@@ -230,12 +237,12 @@ impl StaticRequest {
         Task {
             output_unit: Default::default(),
             warnings: seal_note(&rotor, "the static analysis"),
-            kind: TaskKind::Static {
+            kind: TaskKind::Static(StaticTask {
                 rotor,
                 gravity: g.expect("validated"),
                 rigid: supports == StaticSupports::Rigid,
                 speed: speed.expect("validated"),
-            },
+            }),
             cost,
         }
         .bounded(limits, "rotor")
@@ -392,7 +399,7 @@ impl Level1Request {
         let task = Task {
             output_unit: self.output_unit.unwrap_or_default(),
             warnings: model.warnings(speed, speed),
-            kind: TaskKind::Level1 {
+            kind: TaskKind::Level1(Level1Task {
                 model,
                 speed,
                 at,
@@ -402,7 +409,7 @@ impl Level1Request {
                 extra,
                 reduce,
                 sparse,
-            },
+            }),
             cost: match sparse {
                 true => sparse_sweep_cost(size, model_doubled, solves, limits, values)
                     .plus_bytes(damper_bytes),
@@ -499,7 +506,7 @@ impl FrequencyResponseRequest {
         Task {
             output_unit: self.output_unit.unwrap_or_default(),
             warnings,
-            kind: TaskKind::Frequency {
+            kind: TaskKind::Frequency(FrequencyTask {
                 model,
                 speed,
                 input: (input.expect("validated"), exc.expect("validated")),
@@ -507,7 +514,7 @@ impl FrequencyResponseRequest {
                 frequencies,
                 reduce: self.modal_reduction.unwrap_or(true),
                 sparse,
-            },
+            }),
             cost: match sparse {
                 true => sparse_harmonic_cost(size, limits, count, count * 10 + 16)
                     .plus_bytes(damper_bytes),

@@ -2,6 +2,7 @@
 //! samples) and steady unbalance response.
 
 use super::*;
+use super::{TimeTask, UnbalanceTask};
 
 /// A node of a rotor with `nodes` nodes, or the error at `at`.
 pub(super) fn node_index(bad: &mut Invalid, at: String, k: i64, nodes: usize) -> Option<usize> {
@@ -209,11 +210,11 @@ impl TimeResponseRequest {
         Task {
             output_unit: Default::default(),
             warnings: model.warnings(lo, hi),
-            kind: TaskKind::Time {
+            kind: TaskKind::Time(TimeTask {
                 model,
                 spec,
                 sparse,
-            },
+            }),
             cost,
         }
         .bounded(limits, "output_interval")
@@ -270,7 +271,7 @@ impl UnbalanceResponseRequest {
         Task {
             output_unit: self.output_unit.unwrap_or_default(),
             warnings,
-            kind: TaskKind::Unbalance {
+            kind: TaskKind::Unbalance(UnbalanceTask {
                 model,
                 speeds,
                 unbalances,
@@ -278,7 +279,7 @@ impl UnbalanceResponseRequest {
                 range,
                 reduce: self.modal_reduction.unwrap_or(true),
                 sparse,
-            },
+            }),
             cost,
         }
         .bounded(limits, "speeds")

@@ -29,6 +29,7 @@ mod loads;
 mod report;
 mod whirl;
 
+pub use audit::STANDARD_GRAVITY;
 pub use report::{MAX_CASES, ModelPlan, ReportPlan, SWEEP_OVER_MCS};
 
 /// A validated rotor and damping model.
@@ -199,124 +200,164 @@ pub struct Task {
 
 #[derive(Debug, Clone)]
 pub enum TaskKind {
-    Modal {
-        model: Model,
-        speed: f64,
-        /// Poles in the box `|Re s|, |Im s| <=` this (infinite: all).
-        max_frequency: f64,
-        /// Held sparse (then bounded).
-        sparse: bool,
-    },
-    Campbell {
-        model: Model,
-        speeds: SpeedGrid,
-        /// Branches below this |frequency| (infinite: all).
-        max_frequency: f64,
-        /// Only the lowest this many branches at the first speed.
-        modes: Option<usize>,
-        /// Whether a checked modal reduction may be used.
-        reduce: bool,
-        /// Whether the rotor is held sparse (`analysis::large`): a bounded sweep of the viscous
-        /// or hysteretic model, no Guyan reduction, more than [`SPARSE_FROM`] coordinates.
-        sparse: bool,
-        /// Largest reduced model the sparse path may solve (its cost was estimated so).
-        max_states: usize,
-    },
-    Stability {
-        model: Model,
-        speeds: SpeedGrid,
-        /// Held sparse: the poles in the box `|Re s|, |Im s| <=` this are considered, on a
-        /// reduction of at most `max_states` states (`None`: every pole, dense).
-        held: Option<(f64, usize)>,
-    },
-    Damping {
-        model: Model,
-        state_form: bool,
-        band: Option<[f64; 2]>,
-        max_deviation: Option<f64>,
-        /// The fit may choose no more states than this.
-        max_states: usize,
-        /// Spin speed at which tabulated supports are evaluated.
-        speed: f64,
-    },
-    Time {
-        model: Model,
-        spec: TimeSpec,
-        /// Whether the rotor is held sparse ([`Model::parse_held`]): integrated on a reduction
-        /// checked through sparse factors, never on its full model.
-        sparse: bool,
-    },
-    Unbalance {
-        model: Model,
-        speeds: SpeedGrid,
-        /// `(node, m e, phase)`.
-        unbalances: Vec<(usize, f64, f64)>,
-        nodes: Vec<usize>,
-        /// Operating range `(min, max)`, rad/s: the peaks' separation margins.
-        range: Option<(f64, f64)>,
-        /// Whether a checked modal reduction may be used.
-        reduce: bool,
-        /// Whether the rotor is held sparse ([`Model::parse_held`]).
-        sparse: bool,
-    },
-    CriticalMap {
-        rotor: BeamRotor,
-        stiffness: Vec<f64>,
-        modes: usize,
-    },
-    Static {
-        rotor: BeamRotor,
-        gravity: f64,
-        rigid: bool,
-        /// Speed at which tabulated supports are evaluated.
-        speed: f64,
-    },
-    Level1 {
-        model: Model,
-        speed: f64,
-        /// `(node, share of q)`.
-        at: Vec<(usize, f64)>,
-        qs: Vec<f64>,
-        /// API 617's anticipated cross-coupling, N/m.
-        qa: Option<f64>,
-        /// The machine's mean gas density, kg/m^3 (the Region A/B screen).
-        density: Option<f64>,
-        /// Level II's further cross-coupling, `(node, q N/m)`; Level II runs with `qa`.
-        extra: Vec<(usize, f64)>,
-        /// Whether Level I may run on a checked modal reduction.
-        reduce: bool,
-        /// Whether the rotor is held sparse ([`Model::parse_held`]): Level I on a reduction
-        /// checked through sparse factors only, no Level II.
-        sparse: bool,
-    },
-    Frequency {
-        model: Model,
-        speed: f64,
-        input: (usize, Excitation),
-        output: usize,
-        frequencies: Vec<f64>,
-        /// Whether a checked modal reduction may be used.
-        reduce: bool,
-        /// Whether the rotor is held sparse ([`Model::parse_held`]).
-        sparse: bool,
-    },
+    Modal(ModalTask),
+    Campbell(CampbellTask),
+    Stability(StabilityTask),
+    Damping(DampingTask),
+    Time(TimeTask),
+    Unbalance(UnbalanceTask),
+    CriticalMap(CriticalMapTask),
+    Static(StaticTask),
+    Level1(Level1Task),
+    Frequency(FrequencyTask),
     Report(Box<ReportPlan>),
+}
+
+/// Poles at one speed.
+#[derive(Debug, Clone)]
+pub struct ModalTask {
+    pub model: Model,
+    pub speed: f64,
+    /// Poles in the box `|Re s|, |Im s| <=` this (infinite: all).
+    pub max_frequency: f64,
+    /// Held sparse (then bounded).
+    pub sparse: bool,
+}
+
+/// A sweep over speeds with branches tracked.
+#[derive(Debug, Clone)]
+pub struct CampbellTask {
+    pub model: Model,
+    pub speeds: SpeedGrid,
+    /// Branches below this |frequency| (infinite: all).
+    pub max_frequency: f64,
+    /// Only the lowest this many branches at the first speed.
+    pub modes: Option<usize>,
+    /// Whether a checked modal reduction may be used.
+    pub reduce: bool,
+    /// Whether the rotor is held sparse (`analysis::large`): a bounded sweep of the viscous
+    /// or hysteretic model, no Guyan reduction, more than [`SPARSE_FROM`] coordinates.
+    pub sparse: bool,
+    /// Largest reduced model the sparse path may solve (its cost was estimated so).
+    pub max_states: usize,
+}
+
+/// The threshold of instability over a speed range.
+#[derive(Debug, Clone)]
+pub struct StabilityTask {
+    pub model: Model,
+    pub speeds: SpeedGrid,
+    /// Held sparse: the poles in the box `|Re s|, |Im s| <=` this are considered, on a
+    /// reduction of at most `max_states` states (`None`: every pole, dense).
+    pub held: Option<(f64, usize)>,
+}
+
+/// The damping model's matrices and fits.
+#[derive(Debug, Clone)]
+pub struct DampingTask {
+    pub model: Model,
+    pub state_form: bool,
+    pub band: Option<[f64; 2]>,
+    pub max_deviation: Option<f64>,
+    /// The fit may choose no more states than this.
+    pub max_states: usize,
+    /// Spin speed at which tabulated supports are evaluated.
+    pub speed: f64,
+}
+
+/// A time response.
+#[derive(Debug, Clone)]
+pub struct TimeTask {
+    pub model: Model,
+    pub spec: TimeSpec,
+    /// Whether the rotor is held sparse ([`Model::parse_held`]): integrated on a reduction
+    /// checked through sparse factors, never on its full model.
+    pub sparse: bool,
+}
+
+/// The steady unbalance response over speeds.
+#[derive(Debug, Clone)]
+pub struct UnbalanceTask {
+    pub model: Model,
+    pub speeds: SpeedGrid,
+    /// `(node, m e, phase)`.
+    pub unbalances: Vec<(usize, f64, f64)>,
+    pub nodes: Vec<usize>,
+    /// Operating range `(min, max)`, rad/s: the peaks' separation margins.
+    pub range: Option<(f64, f64)>,
+    /// Whether a checked modal reduction may be used.
+    pub reduce: bool,
+    /// Whether the rotor is held sparse ([`Model::parse_held`]).
+    pub sparse: bool,
+}
+
+/// The undamped critical speed map.
+#[derive(Debug, Clone)]
+pub struct CriticalMapTask {
+    pub rotor: BeamRotor,
+    pub stiffness: Vec<f64>,
+    pub modes: usize,
+}
+
+/// The static deflection under gravity.
+#[derive(Debug, Clone)]
+pub struct StaticTask {
+    pub rotor: BeamRotor,
+    pub gravity: f64,
+    pub rigid: bool,
+    /// Speed at which tabulated supports are evaluated.
+    pub speed: f64,
+}
+
+/// API 617's Level I (and II) stability screen.
+#[derive(Debug, Clone)]
+pub struct Level1Task {
+    pub model: Model,
+    pub speed: f64,
+    /// `(node, share of q)`.
+    pub at: Vec<(usize, f64)>,
+    pub qs: Vec<f64>,
+    /// API 617's anticipated cross-coupling, N/m.
+    pub qa: Option<f64>,
+    /// The machine's mean gas density, kg/m^3 (the Region A/B screen).
+    pub density: Option<f64>,
+    /// Level II's further cross-coupling, `(node, q N/m)`; Level II runs with `qa`.
+    pub extra: Vec<(usize, f64)>,
+    /// Whether Level I may run on a checked modal reduction.
+    pub reduce: bool,
+    /// Whether the rotor is held sparse ([`Model::parse_held`]): Level I on a reduction
+    /// checked through sparse factors only, no Level II.
+    pub sparse: bool,
+}
+
+/// A non-synchronous frequency response at one speed.
+#[derive(Debug, Clone)]
+pub struct FrequencyTask {
+    pub model: Model,
+    pub speed: f64,
+    pub input: (usize, Excitation),
+    pub output: usize,
+    pub frequencies: Vec<f64>,
+    /// Whether a checked modal reduction may be used.
+    pub reduce: bool,
+    /// Whether the rotor is held sparse ([`Model::parse_held`]).
+    pub sparse: bool,
 }
 
 impl Task {
     /// The analysis's name, as in its path.
     pub fn name(&self) -> &'static str {
         match &self.kind {
-            TaskKind::Modal { .. } => "modal",
-            TaskKind::Campbell { .. } => "campbell",
-            TaskKind::Stability { .. } => "stability",
-            TaskKind::Damping { .. } => "damping",
-            TaskKind::Time { .. } => "time-response",
-            TaskKind::Unbalance { .. } => "unbalance-response",
-            TaskKind::CriticalMap { .. } => "critical-speed-map",
-            TaskKind::Static { .. } => "static",
-            TaskKind::Level1 { .. } => "level1",
-            TaskKind::Frequency { .. } => "frequency-response",
+            TaskKind::Modal(ModalTask { .. }) => "modal",
+            TaskKind::Campbell(CampbellTask { .. }) => "campbell",
+            TaskKind::Stability(StabilityTask { .. }) => "stability",
+            TaskKind::Damping(DampingTask { .. }) => "damping",
+            TaskKind::Time(TimeTask { .. }) => "time-response",
+            TaskKind::Unbalance(UnbalanceTask { .. }) => "unbalance-response",
+            TaskKind::CriticalMap(CriticalMapTask { .. }) => "critical-speed-map",
+            TaskKind::Static(StaticTask { .. }) => "static",
+            TaskKind::Level1(Level1Task { .. }) => "level1",
+            TaskKind::Frequency(FrequencyTask { .. }) => "frequency-response",
             TaskKind::Report(_) => "report",
         }
     }
@@ -325,15 +366,17 @@ impl Task {
     /// the report, which runs several).
     pub fn model(&self) -> Option<&Model> {
         match &self.kind {
-            TaskKind::Modal { model, .. }
-            | TaskKind::Campbell { model, .. }
-            | TaskKind::Stability { model, .. }
-            | TaskKind::Damping { model, .. }
-            | TaskKind::Time { model, .. }
-            | TaskKind::Unbalance { model, .. }
-            | TaskKind::Level1 { model, .. }
-            | TaskKind::Frequency { model, .. } => Some(model),
-            TaskKind::CriticalMap { .. } | TaskKind::Static { .. } | TaskKind::Report(_) => None,
+            TaskKind::Modal(ModalTask { model, .. })
+            | TaskKind::Campbell(CampbellTask { model, .. })
+            | TaskKind::Stability(StabilityTask { model, .. })
+            | TaskKind::Damping(DampingTask { model, .. })
+            | TaskKind::Time(TimeTask { model, .. })
+            | TaskKind::Unbalance(UnbalanceTask { model, .. })
+            | TaskKind::Level1(Level1Task { model, .. })
+            | TaskKind::Frequency(FrequencyTask { model, .. }) => Some(model),
+            TaskKind::CriticalMap(CriticalMapTask { .. })
+            | TaskKind::Static(StaticTask { .. })
+            | TaskKind::Report(_) => None,
         }
     }
 
@@ -343,20 +386,20 @@ impl Task {
         let model = size.model_bytes() + 2 * size.eigen_bytes();
         let rest = self.cost.peak_bytes.saturating_sub(model);
         match &self.kind {
-            TaskKind::Damping { .. } => "damping",
-            TaskKind::Modal { .. } => "rotor",
-            TaskKind::Time { .. } if rest > model => "output_interval",
-            TaskKind::Campbell { .. }
-            | TaskKind::Stability { .. }
-            | TaskKind::Unbalance { .. }
+            TaskKind::Damping(DampingTask { .. }) => "damping",
+            TaskKind::Modal(ModalTask { .. }) => "rotor",
+            TaskKind::Time(TimeTask { .. }) if rest > model => "output_interval",
+            TaskKind::Campbell(CampbellTask { .. })
+            | TaskKind::Stability(StabilityTask { .. })
+            | TaskKind::Unbalance(UnbalanceTask { .. })
             | TaskKind::Report(_)
                 if rest > model =>
             {
                 "speeds"
             }
-            TaskKind::CriticalMap { .. } if rest > model => "stiffness",
-            TaskKind::Level1 { .. } if rest > model => "cross_coupling",
-            TaskKind::Frequency { .. } if rest > model => "frequencies",
+            TaskKind::CriticalMap(CriticalMapTask { .. }) if rest > model => "stiffness",
+            TaskKind::Level1(Level1Task { .. }) if rest > model => "cross_coupling",
+            TaskKind::Frequency(FrequencyTask { .. }) if rest > model => "frequencies",
             _ => "rotor",
         }
     }

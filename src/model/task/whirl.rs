@@ -1,5 +1,6 @@
 //! Which analyses read a support over whirl frequency, and under which damping models.
 
+use super::{CriticalMapTask, DampingTask, StaticTask, TimeTask};
 use super::{Task, TaskKind};
 use crate::model::damping::DampingModel;
 use crate::model::error::Invalid;
@@ -13,8 +14,8 @@ impl Task {
     /// damping matrices through their fit.
     pub(crate) fn whirl_read(&self) -> Result<(), Invalid> {
         let supports: &[crate::model::supports::GeneralSupport] = match &self.kind {
-            TaskKind::CriticalMap { rotor, .. } => rotor.general_supports(),
-            TaskKind::Static { .. } | TaskKind::Report(_) => return Ok(()),
+            TaskKind::CriticalMap(CriticalMapTask { rotor, .. }) => rotor.general_supports(),
+            TaskKind::Static(StaticTask { .. }) | TaskKind::Report(_) => return Ok(()),
             _ => self.model().map_or(&[], |m| m.rotor.general_supports()),
         };
         let Some(first) = supports.iter().find(|s| s.frequency_dependent()) else {
@@ -22,7 +23,10 @@ impl Task {
         };
         // The time domain and the damping matrices carry it by its Maxwell fit
         // (`damping/whirl_fit.rs`), under every model that has a time-domain form.
-        if matches!(self.kind, TaskKind::Time { .. } | TaskKind::Damping { .. }) {
+        if matches!(
+            self.kind,
+            TaskKind::Time(TimeTask { .. }) | TaskKind::Damping(DampingTask { .. })
+        ) {
             return match supports.iter().find(|s| s.ross()) {
                 Some(r) => Err(Invalid::one(
                     format!("{}.interpolation", r.path()),

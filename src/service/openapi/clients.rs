@@ -20,7 +20,7 @@
 //! - Request examples from `examples/` (see [`super::examples`]).
 //! - Schemas no longer referenced (`NoOptions`, `AnalysisName`) are dropped.
 //!
-//! The pass is idempotent, and a failure here is a bug in it (caught by `tests/openapi.rs`).
+//! The pass is idempotent, and a failure here is a bug in it (caught by `tests/it/openapi.rs`).
 
 use std::collections::BTreeSet;
 

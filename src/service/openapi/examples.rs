@@ -1,6 +1,6 @@
 //! Request examples in the document, taken from `examples/` at build time: Swagger UI's
 //! "Try it out" fills in a body the server accepts, and generators and fuzzers get a valid
-//! one (`tests/openapi.rs` posts every one of them). For each endpoint the quickest of its
+//! one (`tests/it/openapi.rs` posts every one of them). For each endpoint the quickest of its
 //! bundled examples (`examples/<name>.<endpoint>.json`, the body of `POST /v1/<endpoint>`).
 //!
 //! The Docker build compiles these in: `.dockerignore` lets `examples/` into the context.

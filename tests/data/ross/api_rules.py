@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """ROSS 2.3.0's `run_level1` and ross-report 0.0.1's API 684 unbalance rules, as references
-for tests/audit_ross_report.rs. Writes api_rules.json beside this file.
+for tests/it/audit_ross_report.rs. Writes api_rules.json beside this file.
 
 Rerun from the repository root (ROSS as in generate.py; ross-report needs `black` too):
 

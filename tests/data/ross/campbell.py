@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""ROSS 2.3.0 references for Campbell diagrams, critical speeds and seals (tests/campbell_ross.rs).
+"""ROSS 2.3.0 references for Campbell diagrams, critical speeds and seals (tests/it/campbell_ross.rs).
 
 Rerun (from the repository root, ~10 min on one core; the venv as in generate.py):
 

@@ -7,7 +7,7 @@ Rerun (from the repository root, ~1 min on one core):
     OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 .venv/bin/python tests/data/ross/convert.py
 
 It rewrites tests/data/ross/convert/<name>.toml (the file `Rotor.save` wrote, byte for byte) and
-tests/data/ross/convert/<name>.json (the references). tests/convert_ross.rs posts each TOML to
+tests/data/ross/convert/<name>.json (the references). tests/it/convert_ross.rs posts each TOML to
 the endpoint, runs Whirl's modal analysis and unbalance response on the converted rotor and
 compares them with the JSON. No randomness; LAPACK results repeat up to rounding (about 1e-14 of
 the largest eigenvalue), so compare with a tolerance.

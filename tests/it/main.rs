@@ -1,0 +1,59 @@
+//! The numerical and in-process HTTP tests, one binary (one link of the crate) with a module per area.
+
+#[path = "../common/mod.rs"]
+mod common;
+#[path = "../common/glyphs.rs"]
+mod glyphs;
+
+mod audit;
+mod audit_ross;
+mod audit_ross_report;
+mod beam;
+mod bearings;
+mod bearings_models;
+mod campbell_models;
+mod campbell_modes;
+mod campbell_ross;
+mod convert_ross;
+mod damping_large;
+mod damping_large_screens;
+mod elements;
+mod errors;
+mod example1;
+mod exponential;
+mod http;
+mod http_contract;
+mod input_units;
+mod jeffcott;
+mod large;
+mod level1_large;
+mod level1_reduced;
+mod machines;
+mod map_large;
+mod modal_large;
+mod nearest;
+mod openapi;
+mod output_units;
+mod outside_box;
+mod plots;
+mod png;
+mod readme;
+mod reduction;
+mod report_cases;
+mod report_html;
+mod report_large;
+mod report_pace;
+mod report_plots;
+mod report_sample;
+mod response;
+mod response_large;
+mod ross_tables;
+mod runup_reduction;
+mod stability_large;
+mod statics_large;
+mod time;
+mod time_large;
+mod units;
+mod whirl_audit;
+mod whirl_supports;
+mod whirl_time;
