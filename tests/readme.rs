@@ -532,17 +532,15 @@ async fn seal_over_frequency_run_up() {
         .map(|(k, _)| hx[k].hypot(hy[k]))
         .fold(0.0, f64::max);
     assert_eq!(branches, 16, "{fit}");
-    assert_printed(100.0 * deviation, "3.1", "the seal's fit deviation, %");
+    assert_printed(100.0 * deviation, "5.4", "the seal's fit deviation, %");
     assert_eq!(reduction["modes"], json!(4), "{reduction}");
     assert_eq!(reduction["states"], json!(38), "{reduction}");
     assert_eq!(reduction["full_states"], json!(140), "{reduction}");
-    assert_printed(1e6 * peak, "19.9", "run-up peak, um");
-    assert_printed(peak_speed, "486.2", "run-up peak speed");
+    assert_printed(1e6 * peak, "20.1", "run-up peak, um");
+    assert_printed(peak_speed, "486.6", "run-up peak speed");
     assert_printed(1e6 * steady_peak, "20.75", "steady peak, um");
     assert_printed(steady_speed, "472.2", "steady peak speed");
-    assert_printed(
-        100.0 * (1.0 - held_amplitude / steady_peak),
-        "2.7",
-        "held time response below the frequency domain, %",
-    );
+    // The fit held to the table at the speed: the frequency domain's amplitude.
+    let held_off = (held_amplitude / steady_peak - 1.0).abs();
+    assert!(held_off <= 1e-4, "{held_off}");
 }

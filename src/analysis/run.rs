@@ -4,8 +4,10 @@
 mod audit_report;
 mod models;
 mod threshold;
+mod time_fit;
 
 pub use models::build;
+pub use time_fit::FittedTime;
 use models::{assemble, damping_error, harmonic_model, rigid_body};
 
 use super::AnalysisError;
@@ -59,7 +61,7 @@ pub enum Outcome {
     Time(
         TimeResult,
         Option<crate::analysis::reduction::Reduction>,
-        Vec<SupportFit>,
+        time_fit::FittedTime,
     ),
     Unbalance {
         speeds: Vec<f64>,
@@ -293,7 +295,7 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
             max_states,
             speed,
         } => {
-            let (system, fits) = models::fitted(model, control)?;
+            let (system, fits) = models::fitted(model, &[*speed], control)?;
             let options = report::Options {
                 state_form: *state_form,
                 band: *band,
@@ -322,7 +324,7 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
             spec,
             sparse,
         } => {
-            let (system, fits) = models::fitted(model, control)?;
+            let (system, fits) = time_fit::fitted(model, spec, !*sparse, control)?;
             let reduced = time::reduced::solve_sparse(
                 &system,
                 &model.damping,
@@ -335,7 +337,7 @@ pub fn run(task: &Task, control: &Control) -> Result<Outcome, RunError> {
                 return Ok(Outcome::Time(r, Some(reduction), fits));
             }
             if *sparse {
-                if let Some(f) = fits.first() {
+                if let Some(f) = fits.fits.first() {
                     return Err(RunError::Invalid(Invalid::one(
                         format!("{}.frequencies", f.path),
                         "a rotor held sparse has no internal coordinates for the branches a \
