@@ -7,8 +7,8 @@ mod threshold;
 mod time_fit;
 
 pub use models::build;
-pub use time_fit::FittedTime;
 use models::{assemble, damping_error, harmonic_model, rigid_body};
+pub use time_fit::FittedTime;
 
 use super::AnalysisError;
 use super::audit::cases::{self, Assessment, Case};
