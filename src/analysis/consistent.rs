@@ -124,6 +124,46 @@ pub fn consistent(
     consistent_on(system, damping, speed, s0, false)
 }
 
+/// The eigenvalues of `system` read at `|Im around|` within [`SEARCH`] of `around` (the
+/// hysteretic model's with their own signs), nearest first: where a
+/// continuation ended on a pole already found, the pole it missed is among them (two modes of
+/// an anisotropic rotor a few rad/s apart, the one followed veering onto the other's mirror).
+pub fn neighbours(
+    system: &RotorSystem,
+    damping: &DampingModel,
+    speed: f64,
+    around: c64,
+) -> Result<Vec<c64>, AnalysisError> {
+    let read = system.read(speed, around.im.abs());
+    let Some(problems) = large::problems(&read, damping, None, speed) else {
+        return Ok(vec![]);
+    };
+    let scale = around.norm().max(1e-3);
+    let shift = around + c64::new(1e-9, 1.3e-9) * scale;
+    let mut out = vec![];
+    for p in &problems {
+        let op = p.shift_invert(shift)?;
+        let size = op.states();
+        let found = arnoldi::nearest_from(
+            size,
+            |b| op.solve(b),
+            shift,
+            SEARCH * scale,
+            super::refine::TOLERANCE,
+            (8, 0),
+            size.min(120),
+        )?;
+        out.extend(
+            found
+                .into_iter()
+                .flat_map(|f| f.values)
+                .filter(|&t| p.consistent(t, speed)),
+        );
+    }
+    out.sort_by(|a, b| (a - around).norm().total_cmp(&(b - around).norm()));
+    Ok(out)
+}
+
 /// [`consistent`] on the hysteretic model's crossing problem where `crossing` (a forward
 /// crossing of the 1x line, where its rotating loss changes sign: `analysis::criticals`).
 pub fn consistent_on(

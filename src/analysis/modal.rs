@@ -168,22 +168,52 @@ pub fn modal_consistent(
         .map(|p| super::consistent::consistent(system, damping, speed, p.s))
         .collect::<Result<_, _>>()?;
     let doubled = system.layout() == Layout::Doubled;
+    let same = |k: &super::consistent::Consistent, c: &super::consistent::Consistent| {
+        (k.s - c.s).norm() <= 1e-8 * c.s.norm()
+            || (doubled && (k.s - c.s.conj()).norm() <= 1e-8 * c.s.norm())
+    };
     let (mut kept, mut lost, mut merged, mut solves) = (vec![], 0, 0, 0);
+    let mut missed = vec![];
     for c in found {
         let Some(c) = c else {
             lost += 1;
             continue;
         };
         solves += c.solves;
-        let same = |k: &super::consistent::Consistent| {
-            (k.s - c.s).norm() <= 1e-8 * c.s.norm()
-                || (doubled && (k.s - c.s.conj()).norm() <= 1e-8 * c.s.norm())
-        };
-        if kept.iter().any(same) {
+        if kept.iter().any(|k| same(k, &c)) {
             merged += 1;
+            missed.push(c.s);
             continue;
         }
         kept.push(c);
+    }
+    // Each continuation that ended on a pole already found missed one: continued from the
+    // eigenvalues beside that pole (`consistent::neighbours`) until one ends on a new pole.
+    for around in missed {
+        let near = super::consistent::neighbours(system, damping, speed, around)?;
+        for t in near {
+            let known = |k: &super::consistent::Consistent| {
+                let d = (k.s - t).norm();
+                let d = if doubled {
+                    d.min((k.s.conj() - t).norm())
+                } else {
+                    d
+                };
+                d <= 1e-6 * t.norm()
+            };
+            if kept.iter().any(known) {
+                continue;
+            }
+            let Some(c) = super::consistent::consistent(system, damping, speed, t)? else {
+                continue;
+            };
+            solves += c.solves;
+            if !kept.iter().any(|k| same(k, &c)) {
+                kept.push(c);
+                merged -= 1;
+                break;
+            }
+        }
     }
     kept.retain(|c| in_box(c.s, bound));
     // Doubled: each pole with its mirror, as the full model has them, for the set to choose.

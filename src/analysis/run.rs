@@ -10,9 +10,11 @@ mod modal;
 mod models;
 mod threshold;
 mod time;
+mod time_fit;
 
 use models::assemble;
 pub use models::build;
+pub use time_fit::FittedTime;
 
 use super::AnalysisError;
 use super::audit::cases::{self, Assessment, Case};
@@ -62,7 +64,7 @@ pub enum Outcome {
     Time(
         TimeResult,
         Option<crate::analysis::reduction::Reduction>,
-        Vec<SupportFit>,
+        time_fit::FittedTime,
     ),
     Unbalance {
         speeds: Vec<f64>,

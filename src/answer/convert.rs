@@ -4,6 +4,7 @@ use crate::analysis::campbell::CampbellResult;
 use crate::analysis::modal::ModalResult;
 use crate::analysis::poles;
 use crate::analysis::stability::Threshold;
+use crate::analysis::time::fit_poles::FitPoles;
 use crate::analysis::time::{Method, TimeResult};
 use crate::analysis::unbalance::Orbit;
 use crate::damping::StateModel;
@@ -477,6 +478,31 @@ pub fn support_fit(f: &SupportFit) -> api::SupportFitInfo {
     }
 }
 
+pub fn fit_poles(p: &FitPoles) -> api::FitPolesInfo {
+    let value = |s: c64| api::PoleValue {
+        decay_rate: s.re,
+        frequency: s.im,
+    };
+    api::FitPolesInfo {
+        speed: p.speed,
+        poles: p
+            .pairs
+            .iter()
+            .map(|q| api::FitPolePair {
+                consistent: value(q.consistent),
+                fitted: value(q.fitted),
+                distance: q.distance,
+            })
+            .collect(),
+        max_distance: p.max_distance,
+        max_decay_rate: p.max_decay_rate.0,
+        fitted_max_decay_rate: p.max_decay_rate.1,
+        unstable: p.unstable.iter().map(|&s| value(s)).collect(),
+        lost: p.lost,
+        merged: p.merged,
+    }
+}
+
 pub fn time_response(r: &TimeResult) -> api::TimeResponseResponse {
     api::TimeResponseResponse {
         nondimensional: false,
@@ -501,6 +527,7 @@ pub fn time_response(r: &TimeResult) -> api::TimeResponseResponse {
         states: r.states,
         reduction: None,
         support_fits: vec![],
+        fit_poles: vec![],
     }
 }
 

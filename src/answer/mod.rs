@@ -75,10 +75,11 @@ impl Output {
                 d.support_fits = fits.iter().map(convert::support_fit).collect();
                 d
             })),
-            Outcome::Time(r, reduction, fits) => {
+            Outcome::Time(r, reduction, fitted) => {
                 let mut t = convert::time_response(&r);
                 t.reduction = reduction.as_ref().map(convert::reduction);
-                t.support_fits = fits.iter().map(convert::support_fit).collect();
+                t.support_fits = fitted.fits.iter().map(convert::support_fit).collect();
+                t.fit_poles = fitted.poles.iter().map(convert::fit_poles).collect();
                 Output::Time(t)
             }
             Outcome::Unbalance {

@@ -28,8 +28,14 @@ pub async fn post_json(uri: &str, body: &serde_json::Value) -> (u16, serde_json:
 }
 
 /// POSTs `body` asking for `accept`: status, content type and body.
+/// The synchronous time limit is an operator's setting, not what these tests check: long enough
+/// here that two large analyses sharing 2 cores are not stopped at the default 60 s.
 pub async fn post_as(uri: &str, body: &serde_json::Value, accept: &str) -> (u16, String, Vec<u8>) {
-    post_to(whirl::service::Config::default(), uri, body, accept).await
+    let config = whirl::service::Config {
+        request_time_limit: std::time::Duration::from_secs(600),
+        ..whirl::service::Config::default()
+    };
+    post_to(config, uri, body, accept).await
 }
 
 /// POSTs `body` to the in-process app of `config`: status, content type and body.

@@ -55,5 +55,6 @@ mod time;
 mod time_large;
 mod units;
 mod whirl_audit;
+mod whirl_fit_time;
 mod whirl_supports;
 mod whirl_time;

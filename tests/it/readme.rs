@@ -532,17 +532,90 @@ async fn seal_over_frequency_run_up() {
         .map(|(k, _)| hx[k].hypot(hy[k]))
         .fold(0.0, f64::max);
     assert_eq!(branches, 16, "{fit}");
-    assert_printed(100.0 * deviation, "3.1", "the seal's fit deviation, %");
+    assert_printed(100.0 * deviation, "5.4", "the seal's fit deviation, %");
     assert_eq!(reduction["modes"], json!(4), "{reduction}");
     assert_eq!(reduction["states"], json!(38), "{reduction}");
     assert_eq!(reduction["full_states"], json!(140), "{reduction}");
-    assert_printed(1e6 * peak, "19.9", "run-up peak, um");
-    assert_printed(peak_speed, "486.2", "run-up peak speed");
+    assert_printed(1e6 * peak, "20.1", "run-up peak, um");
+    assert_printed(peak_speed, "486.6", "run-up peak speed");
     assert_printed(1e6 * steady_peak, "20.75", "steady peak, um");
     assert_printed(steady_speed, "472.2", "steady peak speed");
-    assert_printed(
-        100.0 * (1.0 - held_amplitude / steady_peak),
-        "2.7",
-        "held time response below the frequency domain, %",
-    );
+    // The fit held to the table at the speed: the frequency domain's amplitude.
+    let held_off = (held_amplitude / steady_peak - 1.0).abs();
+    assert!(held_off <= 1e-4, "{held_off}");
+}
+
+/// The README and the pages of `docs/`, as files.
+fn pages() -> Vec<(String, String)> {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let mut out = vec![(
+        "README.md".to_string(),
+        std::fs::read_to_string(format!("{root}/README.md")).unwrap(),
+    )];
+    let mut docs: Vec<_> = std::fs::read_dir(format!("{root}/docs"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "md"))
+        .collect();
+    docs.sort();
+    for p in docs {
+        let name = format!("docs/{}", p.file_name().unwrap().to_string_lossy());
+        out.push((name, std::fs::read_to_string(&p).unwrap()));
+    }
+    out
+}
+
+/// The relative link targets `](target)` of a page, anchors dropped.
+fn links(text: &str) -> Vec<String> {
+    text.split("](")
+        .skip(1)
+        .filter_map(|rest| rest.split(')').next())
+        .map(|t| t.split('#').next().unwrap().to_string())
+        .filter(|t| !t.is_empty() && !t.contains("://") && !t.starts_with("mailto:"))
+        .collect()
+}
+
+#[test]
+fn the_readme_is_a_front_door_to_every_docs_page() {
+    let pages = pages();
+    let readme = &pages[0].1;
+    let lines = readme.lines().count();
+    assert!(lines <= 400, "README.md has {lines} lines");
+    for (name, _) in &pages[1..] {
+        assert!(
+            readme.contains(&format!("]({name})")),
+            "README.md links no {name}"
+        );
+    }
+    assert!(pages.len() >= 8, "{} pages", pages.len());
+}
+
+#[test]
+fn every_relative_link_of_the_readme_and_docs_resolves() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    for (name, text) in pages() {
+        let dir = root.join(name.rsplit_once('/').map_or("", |(d, _)| d));
+        for target in links(&text) {
+            assert!(
+                dir.join(&target).exists(),
+                "{name} links {target}, which does not exist"
+            );
+        }
+    }
+}
+
+#[test]
+fn the_docs_speak_to_users_not_of_the_projects_history() {
+    for (name, text) in pages() {
+        let lower = text.to_lowercase();
+        for (i, _) in lower.match_indices("issue ") {
+            let next = lower[i + 6..].chars().next().unwrap_or(' ');
+            assert!(
+                !next.is_ascii_digit() && next != '#',
+                "{name} names an issue: {}",
+                &text[i..(i + 20).min(text.len())]
+            );
+        }
+        assert!(!lower.contains("session "), "{name} names a session");
+    }
 }

@@ -18,7 +18,7 @@ impl Analysis for DampingTask {
             max_states,
             speed,
         } = self;
-        let (system, fits) = fitted(model, control)?;
+        let (system, fits) = fitted(model, &[*speed], control)?;
         let options = report::Options {
             state_form: *state_form,
             band: *band,

@@ -33,16 +33,32 @@ pub(super) fn assemble(model: &Model) -> Result<RotorSystem, RunError> {
 }
 
 /// The rotor assembled with its supports over whirl frequency fitted by Maxwell branches (how
-/// the time domain and the damping matrices read them), and how well each was fitted.
+/// the time domain and the damping matrices read them), held to their tables at the whirl
+/// frequencies `anchors`, and how well each was fitted.
 pub(super) fn fitted(
     model: &Model,
+    anchors: &[f64],
     control: &Control,
 ) -> Result<(RotorSystem, Vec<SupportFit>), RunError> {
     let system = assemble(model)?;
+    fit(&system, model, anchors, control)
+}
+
+/// [`fitted`] of an assembled `system`.
+pub(super) fn fit(
+    system: &RotorSystem,
+    model: &Model,
+    anchors: &[f64],
+    control: &Control,
+) -> Result<(RotorSystem, Vec<SupportFit>), RunError> {
     if !system.frequency_dependent() {
-        return Ok((system, vec![]));
+        return Ok((system.clone(), vec![]));
     }
-    whirl_fit::fit(&system, &FitOptions::default(), &|| control.is_cancelled())
+    let options = FitOptions {
+        anchors: anchors.to_vec(),
+        ..FitOptions::default()
+    };
+    whirl_fit::fit(system, &options, &|| control.is_cancelled())
         .map_err(|e| damping_error(e, &model.rotor))?
         .ok_or(RunError::Cancelled)
 }

@@ -1,7 +1,7 @@
 //! Time responses: on a checked reduction where one passes, else on the full dense model; a
 //! rotor held sparse only on a reduction.
 
-use super::models::{damping_error, fitted};
+use super::models::damping_error;
 use super::{Analysis, Outcome, RunError};
 use crate::analysis::control::Control;
 use crate::analysis::time;
@@ -21,7 +21,7 @@ impl Analysis for TimeTask {
             spec,
             sparse,
         } = self;
-        let (system, fits) = fitted(model, control)?;
+        let (system, fits) = super::time_fit::fitted(model, spec, !*sparse, control)?;
         let reduced = time::reduced::solve_sparse(
             &system,
             &model.damping,
@@ -34,7 +34,7 @@ impl Analysis for TimeTask {
             return Ok(Outcome::Time(r, Some(reduction), fits));
         }
         if *sparse {
-            if let Some(f) = fits.first() {
+            if let Some(f) = fits.fits.first() {
                 return Err(RunError::Invalid(Invalid::one(
                     format!("{}.frequencies", f.path),
                     "a rotor held sparse has no internal coordinates for the branches a \

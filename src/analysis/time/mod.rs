@@ -16,6 +16,7 @@ pub mod conjugate;
 mod etd;
 pub mod exact;
 pub mod exponential;
+pub mod fit_poles;
 pub mod implicit;
 pub mod reduced;
 

@@ -27,7 +27,6 @@ use super::{
     Coordinates, TimeError, TimeResult, TimeSpec, solve_exponential, solve_in, time_response,
     translation,
 };
-use crate::analysis::AnalysisError;
 use crate::analysis::control::Control;
 use crate::analysis::large::{self, Check};
 use crate::analysis::reduction::{Criterion, RESPONSE_TOLERANCE, Reduced, Reduction, reduce};
@@ -124,39 +123,28 @@ pub fn solve_sparse(
     else {
         return Ok(None);
     };
-    // The check's full-model poles (shift-invert Arnoldi) do not depend on the basis: found on
-    // a second thread while the first candidate is built and integrated, whose integration is
-    // kept if it passes (the first passed on every rotor of `benches/`; the two halves take
-    // comparable time there, 20-40% of the run-up each). The candidate's own poles for the
-    // comparison are found on that thread too, once the Arnoldi is done (the candidate is
-    // built long before).
-    let (tx, rx) = std::sync::mpsc::sync_channel::<DampedModel>(1);
+    // The check's full-model poles (shift-invert Arnoldi) do not depend on the basis: found
+    // beside the first candidate's build and integration, which is kept if it passes (the
+    // first passed on every rotor of `benches/`; the two halves take comparable time there,
+    // 20-40% of the run-up each). On the pool's threads (`rayon::join`), not a thread of its
+    // own: a new thread's first product reserves its own scratch (twice the L3 cache each).
     let check = &check;
-    let (exact, first) = std::thread::scope(|scope| {
-        let helper = scope.spawn(move || {
-            let exact = large::exact_poles(system, damping, dampers, check)?;
-            let approx = rx
-                .recv()
-                .ok()
-                .map(|m| large::compared(&m, check))
-                .transpose()?;
-            Ok::<_, AnalysisError>((exact, approx))
-        });
-        let first = widening.candidate().map(|c| {
-            c.map(|c| {
-                // A failed send means the helper failed: its error is taken below.
-                let _ = tx.send(c.model.clone());
-                drop(tx);
-                let out = integrate(system, &c, bound, spec, control);
-                (c, out)
+    let (exact, first) = rayon::join(
+        || large::exact_poles(system, damping, dampers, check),
+        || {
+            widening.candidate().map(|c| {
+                c.map(|c| {
+                    let out = integrate(system, &c, bound, spec, control);
+                    (c, out)
+                })
             })
-        });
-        let exact = helper
-            .join()
-            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
-        (exact, first)
-    });
-    let (Ok((exact, Some(approx))), Ok(Some((candidate, out)))) = (exact, first) else {
+        },
+    );
+    let (Ok(exact), Ok(Some((candidate, out)))) = (exact, first) else {
+        return Ok(None);
+    };
+    // The candidate's own poles, for the comparison.
+    let Ok(approx) = large::compared(&candidate.model, check) else {
         return Ok(None);
     };
     if let Some(r) = large::accept(candidate, &exact, &approx, check) {

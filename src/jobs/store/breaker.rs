@@ -10,7 +10,7 @@
 //!
 //! The server's own calls already under way when the store goes away are not cut short: they
 //! find out when the pool gives up on a connection (3 s), and the first to fail opens the
-//! breaker; a client's request gives up after `REQUEST_WAIT` (1 s) and opens it too. An outage
+//! breaker; a client's request gives up after `REQUEST_WAIT` (0.75 s) and opens it too. An outage
 //! shorter than that makes no call fail (they all wait, and go on when the store is back);
 //! the runner's upkeep notices it as a ping that took too long ([`Breaker::doubt`]), and the
 //! store is not trusted for a lease from then either.

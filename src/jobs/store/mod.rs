@@ -44,8 +44,8 @@
 //!   (503 without waiting for a connection); only the server's own pings ([`Store::ping`], the
 //!   runner's upkeep every 250 ms) try the store until it answers, and the time the store came
 //!   back is kept ([`Store::health`]): a lease that ran out while nobody could renew it is not
-//!   a dead server's. A client's request waits [`REQUEST_WAIT`] (1 s) at most for a shared
-//!   store, so the first call to meet a store whose packets are dropped fails within 1 s too.
+//!   a dead server's. A client's request waits [`REQUEST_WAIT`] (0.75 s) at most for a shared
+//!   store, so the first call to meet a store whose packets are dropped answers within 1 s too.
 
 mod breaker;
 mod dir;
@@ -305,7 +305,7 @@ pub struct Store {
 /// How long a client's request waits for a shared store before it fails (503): a store whose
 /// packets are dropped would otherwise hold it for the pool's connection timeout (3 s). The
 /// server's own calls (the runner's claims, heartbeats and results) wait for the pool.
-pub const REQUEST_WAIT: Duration = Duration::from_secs(1);
+pub const REQUEST_WAIT: Duration = Duration::from_millis(750);
 
 /// Runs `$call` on whichever engine is connected,
 /// through the breaker: at once 503 while the store is unreachable, but for a due probe. A

@@ -217,7 +217,10 @@ pub struct SupportFitInfo {
     /// straight continuation.
     pub band: [f64; 2],
     /// Largest `|H~ - H|` over the band (and the table's speeds) of each coefficient, relative
-    /// to the support's largest direct `|H|` over the band.
+    /// to the support's direct `|H|` (`max(|H_xx|, |H_yy|)`) at that frequency; measured at the
+    /// table's frequencies, three readings between each two and 40 per decade of the band, and
+    /// between them. The fit is held to the table at the spin speed of a time response at
+    /// constant speed (and at `speed` here), where an unbalance whirls.
     pub deviation: Matrix2Out,
     /// The largest of `deviation`.
     pub max_deviation: f64,
@@ -234,4 +237,47 @@ pub struct Matrix2Out {
     pub xy: f64,
     pub yx: f64,
     pub yy: f64,
+}
+
+/// A pole `s = decay_rate + i frequency` (1/s, rad/s).
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, ToSchema)]
+pub struct PoleValue {
+    pub decay_rate: f64,
+    pub frequency: f64,
+}
+
+/// A pole of the rotor and the nearest of the model fitted for the time domain.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct FitPolePair {
+    /// Consistent with the whirl frequency it reads its supports at (as `/v1/modal` finds it,
+    /// under the viscous model, or the hysteretic for the nonviscous and equivalent models).
+    pub consistent: PoleValue,
+    /// The fitted model's (the member of a mirror pair on the same side, in doubled
+    /// coordinates).
+    pub fitted: PoleValue,
+    /// `|fitted - consistent| / |consistent|`.
+    pub distance: f64,
+}
+
+/// The poles of the model integrated (its supports over whirl frequency fitted by Maxwell
+/// branches) against the rotor's own at one speed of the integration, compared before
+/// integrating. A fitted model with a pole that grows where every pole of the rotor decays is
+/// refitted, held also at that pole's frequency, and not integrated if it still grows.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct FitPolesInfo {
+    /// Spin speed, rad/s (the constant speed, or each knot of the speed profile).
+    pub speed: f64,
+    /// Each pole of the rotor with its partner, by increasing |frequency|.
+    pub poles: Vec<FitPolePair>,
+    /// The largest `distance`.
+    pub max_distance: f64,
+    /// The largest decay rate of the rotor's poles, 1/s.
+    pub max_decay_rate: f64,
+    /// The largest decay rate of the fitted model's poles (its branches' included), 1/s.
+    pub fitted_max_decay_rate: f64,
+    /// Poles of the fitted model that grow with no growing pole of the rotor beside them.
+    pub unstable: Vec<PoleValue>,
+    /// Poles of the consistency search not found, and merged into others.
+    pub lost: usize,
+    pub merged: usize,
 }

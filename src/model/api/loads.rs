@@ -159,6 +159,10 @@ pub struct TimeResponseResponse {
     /// branches fitted to its table, and how well.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub support_fits: Vec<super::SupportFitInfo>,
+    /// With supports over whirl frequency: the fitted model's poles against the rotor's own at
+    /// each speed integrated, compared before integrating.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub fit_poles: Vec<super::FitPolesInfo>,
     /// How the model was read where it needed saying: supports held at the ends of their
     /// tables of coefficients outside them.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]

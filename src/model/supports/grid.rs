@@ -103,6 +103,53 @@ impl Grid {
     }
 }
 
+impl Grid {
+    /// Warnings for each direct stiffness or damping (`kxx`, `kyy`, `cxx`, `cyy`) that,
+    /// continued past an end of the frequencies along its end slope, changes sign at whirl
+    /// frequencies in `[lo, hi]` (rad/s): a negative direct damping or stiffness is no longer a
+    /// support, and is a reading only the extrapolation made (at each speed of the table).
+    pub fn sign_changes(&self, path: &str, (lo, hi): (f64, f64)) -> Vec<String> {
+        let f = &self.frequencies;
+        let (first, last) = (f[0], f[f.len() - 1]);
+        let mut out = vec![];
+        for (c, name, unit) in [
+            (0, "kxx", "N/m"),
+            (3, "kyy", "N/m"),
+            (4, "cxx", "N s/m"),
+            (7, "cyy", "N s/m"),
+        ] {
+            for (i, row) in self.rows[c].iter().enumerate() {
+                // Along the end slope from the end to the furthest reading: linear.
+                let ends = [(first, lo, "first"), (last, hi, "last")];
+                for (end, far, which) in ends {
+                    let beyond = if which == "first" {
+                        far < end
+                    } else {
+                        far > end
+                    };
+                    let (v0, v1) = (row.at(end), row.at(far));
+                    if !beyond || v0 == 0.0 || v0.signum() == v1.signum() || v1 == 0.0 {
+                        continue;
+                    }
+                    let zero = end + (far - end) * v0 / (v0 - v1);
+                    let speed = match self.speeds.get(i) {
+                        Some(w) if self.speeds.len() > 1 => format!(" at speed {w} rad/s"),
+                        _ => String::new(),
+                    };
+                    out.push(format!(
+                        "{path}.{name}{speed}: continued past its {which} frequency ({end} rad/s) \
+                         along its end slope, it changes sign at {zero:.1} rad/s (from {v0} to \
+                         {v1:.6e} {unit} at {far:.1} rad/s, where it is read): a direct \
+                         coefficient of the wrong sign is no support, and the poles that read it \
+                         there may be unstable for that alone; extend the table"
+                    ));
+                }
+            }
+        }
+        out
+    }
+}
+
 /// Checks an axis of a table: 2 to [`MAX_TABLE`] finite values >= 0, strictly increasing.
 pub fn check_axis(w: &[f64], path: &str, what: &str, bad: &mut Invalid) {
     if w.len() < 2 || w.len() > MAX_TABLE {

@@ -145,13 +145,16 @@ impl Model {
     }
 
     /// Warnings for supports over whirl frequency read at whirl frequencies in `[lo, hi]`
-    /// (rad/s) past their tables.
+    /// (rad/s) past their tables, and for a direct coefficient that changes sign there.
     pub fn whirl_warnings(&self, lo: f64, hi: f64) -> Vec<String> {
-        self.rotor
-            .general_supports()
-            .iter()
-            .filter_map(|s| s.grid()?.past(&s.path(), true, (lo, hi)))
-            .collect()
+        let mut out = vec![];
+        for s in self.rotor.general_supports() {
+            if let Some(g) = s.grid() {
+                out.extend(g.past(&s.path(), true, (lo, hi)));
+                out.extend(g.sign_changes(&s.path(), (lo, hi)));
+            }
+        }
+        out
     }
 
     fn check_states(&self, limits: &Limits, bad: &mut Invalid) {

@@ -12,32 +12,41 @@
 //!
 //! `M0 = M(0)` (a branch has no mass), the rates `d_j` geometric over the table's band widened
 //! by 2 each way (`[w_1 / 2, 2 w_F]`, `w_1` its first nonzero frequency), and `K0`, `C0`, `G_j`
-//! by least squares over the table's frequencies and three readings between each two, so the
-//! fit follows the table's own interpolation; real and imaginary parts alike, in N/m. The
-//! branches are added one at a time until the largest deviation over the band, relative to the
-//! support's largest direct `|H|` there, is at most the target, or [`MAX_BRANCHES`] are used.
+//! by least squares over the samples of `design.rs` (the table's frequencies, three readings
+//! between each two, and 40 per decade of the band), each weighted by the support's direct
+//! `|H|` there, so that the fit is as good relative to the table at the rotor's frequencies as
+//! at the top of the band; real and imaginary parts alike. Anchors (the spin speed of a time
+//! response, whose unbalance whirls there) are held to the table. The branches are added one
+//! at a time until the largest deviation, measured at the samples and between them relative to
+//! the direct `|H|` at each, is at most the target, or [`MAX_BRANCHES`] are used.
 //!
 //! Passivity: on the direct coefficients `C0 >= 0` and `G_j >= 0` (each branch a spring and a
 //! damper in series; Lawson-Hanson), and the symmetric part of `C0` and of every `G_j` kept
 //! positive semidefinite (a symmetric cross term larger than the direct terms allow is
 //! shrunk to their geometric mean). The fitted support's damping, the symmetric part of
 //! `Im H~`, is then nonnegative at every frequency; its skew part (cross-coupling that feeds
-//! forward whirl) is the table's, fitted like the rest.
+//! forward whirl) is the table's, fitted like the rest. A table that is not what passive,
+//! causal branches give (stiffness rising while the damping falls) keeps the deviation it is
+//! left with; the time response compares the fitted model's poles with the rotor's own
+//! (`analysis::time::fit_poles`).
 //!
 //! Between the table's speeds the fitted coefficients are linear in the speed, as every table
 //! over speed is in the state model. Past the band the fitted support follows its branches
 //! (`K0 + sum G_j` and `C0` as `w` grows), not the table's straight continuation.
 
+mod design;
+
 use super::DampingError;
-use crate::linalg::{self, RMat};
+use crate::linalg;
 use crate::model::supports::fitted::Fitted;
 use crate::model::supports::{Coefficients, GeneralSupport, Law, Matrix2};
 use crate::system::RotorSystem;
+use design::Design;
 
 pub use crate::model::supports::fitted::MAX_BRANCHES;
 
-/// Default target: the largest deviation over the band, relative to the support's largest
-/// direct dynamic stiffness there.
+/// Default target: the largest deviation over the band, relative to the support's direct
+/// dynamic stiffness at each frequency.
 pub const TARGET: f64 = 1e-3;
 
 /// How to fit.
@@ -47,6 +56,8 @@ pub struct FitOptions {
     pub rates: Option<Vec<f64>>,
     pub target: f64,
     pub max_branches: usize,
+    /// Whirl frequencies (rad/s) the fit is held to (`design::ANCHOR`).
+    pub anchors: Vec<f64>,
 }
 
 impl Default for FitOptions {
@@ -55,6 +66,7 @@ impl Default for FitOptions {
             rates: None,
             target: TARGET,
             max_branches: MAX_BRANCHES,
+            anchors: vec![],
         }
     }
 }
@@ -69,8 +81,8 @@ pub struct SupportFit {
     /// The table's frequencies, first and last, rad/s.
     pub band: [f64; 2],
     /// Per coefficient `xx`, `xy`, `yx`, `yy`: the largest `|H~ - H|` over the band and the
-    /// table's speeds, relative to the support's largest direct `|H|` over the band at that
-    /// speed.
+    /// table's speeds, relative to the support's direct `|H|` (`max(|H_xx|, |H_yy|)`) at that
+    /// frequency and speed.
     pub deviation: [f64; 4],
     /// The speeds the fit was made at (none: the table does not depend on the speed).
     pub speeds: Vec<f64>,
@@ -134,26 +146,33 @@ pub fn fit(
         let freqs = &grid.frequencies;
         let hi = freqs[freqs.len() - 1];
         let lo = freqs.iter().copied().find(|&w| w > 0.0).unwrap_or(hi);
-        let samples = samples(freqs);
+        let samples = design::samples(freqs);
+        let checks = design::checks(&samples);
         let isotropic = grid.isotropic();
-        // The table read at every speed once (and its mass at rest), whatever the rates.
-        let mut tables: Vec<(Vec<Coefficients>, Matrix2)> = vec![];
+        // The table read at every speed once (at the samples and anchors, and where the fit is
+        // measured; its mass at rest), whatever the rates.
+        let mut tables: Vec<Read> = vec![];
         for &w in &at {
             if stop() {
                 return Ok(None);
             }
-            let table = samples.iter().map(|&f| grid.at(w, f)).collect();
-            tables.push((table, grid.at(w, 0.0).m));
+            let read = |f: &[f64]| f.iter().map(|&f| grid.at(w, f)).collect::<Vec<_>>();
+            let fitted: Vec<f64> = samples.iter().chain(&options.anchors).copied().collect();
+            tables.push(Read {
+                samples: read(&fitted),
+                checks: read(&checks),
+                m0: grid.at(w, 0.0).m,
+            });
         }
         // The fit at every speed with `rates`; `None` once stopped.
         let all = |rates: &[f64]| -> Result<Option<Vec<AtSpeed>>, DampingError> {
-            let design = Design::new(&samples, rates);
+            let design = Design::new(&samples, &options.anchors, rates);
             let mut out = vec![];
-            for (table, m0) in &tables {
+            for read in &tables {
                 if stop() {
                     return Ok(None);
                 }
-                out.push(fit_at(&design, table, *m0, isotropic)?);
+                out.push(fit_at(&design, read, &checks, isotropic)?);
             }
             Ok(Some(out))
         };
@@ -225,6 +244,33 @@ pub fn fit(
     Ok(Some((out, fits)))
 }
 
+/// The support over whirl frequency of `system` and the coefficient (`xx`, `xy`, `yx`, `yy`)
+/// whose fit in `fitted` (the same system fitted) is furthest from its table at spin speed
+/// `speed` and whirl frequency `w`, and how far, relative to the support's direct `|H|` there:
+/// what a pole of the fitted model at `w` reads that the rotor's does not.
+pub fn worst_at(
+    system: &RotorSystem,
+    fitted: &RotorSystem,
+    speed: f64,
+    w: f64,
+) -> Option<(String, &'static str, f64)> {
+    let mut worst: Option<(String, &'static str, f64)> = None;
+    for (p, f) in system.supports.iter().zip(&fitted.supports) {
+        let (Some(grid), Some(branches)) = (p.support.grid(), &f.support.branches) else {
+            continue;
+        };
+        let table = [grid.at(speed, w)];
+        let base = f.support.at(speed);
+        let d = design::deviation(&[w], &table, &base, &branches.at(speed), &branches.rates);
+        for (e, name) in ["xx", "xy", "yx", "yy"].into_iter().enumerate() {
+            if worst.as_ref().is_none_or(|x| d[e] > x.2) {
+                worst = Some((p.support.path(), name, d[e]));
+            }
+        }
+    }
+    worst
+}
+
 /// `m` rates geometric from `lo` to `hi` (one: their geometric mean).
 fn geometric(lo: f64, hi: f64, m: usize) -> Vec<f64> {
     if m == 1 {
@@ -234,82 +280,28 @@ fn geometric(lo: f64, hi: f64, m: usize) -> Vec<f64> {
     (0..m).map(|j| lo * (r * j as f64).exp()).collect()
 }
 
-/// The table's frequencies and three points between each two.
-fn samples(freqs: &[f64]) -> Vec<f64> {
-    let mut out = vec![freqs[0]];
-    for w in freqs.windows(2) {
-        for k in 1..=4 {
-            out.push(w[0] + (w[1] - w[0]) * k as f64 / 4.0);
-        }
-    }
-    out
+/// One support's table read at one speed.
+struct Read {
+    /// At the design's samples and anchors.
+    samples: Vec<Coefficients>,
+    /// Where the fit is measured (`design::checks`).
+    checks: Vec<Coefficients>,
+    /// Its mass at rest.
+    m0: Matrix2,
 }
 
-/// The least-squares matrix of a fit over `samples` with `rates`, the same at every speed and
-/// for every coefficient: rows Re and Im at each sample, columns `K0`, `C0`, `G_j`, each
-/// scaled to unit length (`K0` in N/m beside `C0` in N s/m).
-struct Design<'a> {
-    samples: &'a [f64],
-    rates: &'a [f64],
-    scaled: RMat,
-    scale: Vec<f64>,
-}
-
-impl<'a> Design<'a> {
-    fn new(samples: &'a [f64], rates: &'a [f64]) -> Self {
-        let p = rates.len();
-        let rows = 2 * samples.len();
-        let mut a = RMat::zeros(rows, p + 2);
-        for (i, &w) in samples.iter().enumerate() {
-            a[(2 * i, 0)] = 1.0;
-            a[(2 * i + 1, 1)] = w;
-            for (j, &d) in rates.iter().enumerate() {
-                let den = w * w + d * d;
-                a[(2 * i, 2 + j)] = w * w / den;
-                a[(2 * i + 1, 2 + j)] = w * d / den;
-            }
-        }
-        let scale: Vec<f64> = (0..p + 2)
-            .map(|j| {
-                let s = (0..rows).map(|i| a[(i, j)].powi(2)).sum::<f64>().sqrt();
-                if s > 0.0 { s } else { 1.0 }
-            })
-            .collect();
-        let scaled = RMat::from_fn(rows, p + 2, |i, j| a[(i, j)] / scale[j]);
-        Design {
-            samples,
-            rates,
-            scaled,
-            scale,
-        }
-    }
-}
-
-/// The fit at one speed of `table` read at the design's samples, its mass `m0` at rest.
+/// The fit at one speed of the table `read`, measured at `checks`.
 fn fit_at(
     design: &Design,
-    table: &[Coefficients],
-    m0: Matrix2,
+    read: &Read,
+    checks: &[f64],
     isotropic: bool,
 ) -> Result<AtSpeed, DampingError> {
-    let Design {
-        samples,
-        rates,
-        scaled,
-        scale,
-    } = design;
+    let rates = design.rates;
     let p = rates.len();
-    let get = |m: &Matrix2, e: usize| [m.xx, m.xy, m.yx, m.yy][e];
-    let target = |e: usize| -> Vec<f64> {
-        samples
-            .iter()
-            .zip(table)
-            .flat_map(|(&w, c)| {
-                let k = get(&c.k, e) - w * w * (get(&c.m, e) - get(&m0, e));
-                [k, w * get(&c.c, e)]
-            })
-            .collect()
-    };
+    // Each sample weighed by the support's direct |H| there: a relative fit.
+    let scale = design::scales(&read.samples, &design.samples);
+    let (a, norms) = design.weighted(&scale);
     // Every coefficient free first; kept if the fitted support is passive, else the direct
     // ones again with C0, G_j >= 0 and the symmetric parts made semidefinite.
     let solve = |bounded: bool| -> Result<Parts, DampingError> {
@@ -319,11 +311,12 @@ fn fit_at(
         for &e in solved {
             let direct = e == 0 || e == 3;
             let constrained: Vec<bool> = (0..p + 2).map(|j| bounded && direct && j > 0).collect();
-            let x = linalg::bounded_least_squares(scaled, &target(e), &constrained)?;
-            k0[e] = x[0] / scale[0];
-            c0[e] = x[1] / scale[1];
+            let b = design.target(&read.samples, &read.m0, e, &scale);
+            let x = linalg::bounded_least_squares(&a, &b, &constrained)?;
+            k0[e] = x[0] / norms[0];
+            c0[e] = x[1] / norms[1];
             for j in 0..p {
-                g[j][e] = x[2 + j] / scale[2 + j];
+                g[j][e] = x[2 + j] / norms[2 + j];
             }
         }
         if isotropic {
@@ -359,34 +352,17 @@ fn fit_at(
         yx: v[2],
         yy: v[3],
     };
-    // Deviations over the samples, relative to the largest direct |H|.
-    let mut worst = [0.0; 4];
-    let mut direct = 0.0_f64;
-    for (&w, c) in samples.iter().zip(table) {
-        for e in 0..4 {
-            let h = linalg::c64::new(get(&c.k, e) - w * w * get(&c.m, e), w * get(&c.c, e));
-            let mut f = linalg::c64::new(k0[e] - w * w * get(&m0, e), w * c0[e]);
-            for (j, &d) in rates.iter().enumerate() {
-                let iw = linalg::c64::new(0.0, w);
-                f += iw / (iw + d) * g[j][e];
-            }
-            worst[e] = f64::max(worst[e], (f - h).norm());
-            if e == 0 || e == 3 {
-                direct = direct.max(h.norm());
-            }
-        }
-    }
-    if direct == 0.0 {
-        direct = 1.0;
-    }
+    let base = Coefficients {
+        k: matrix(k0),
+        c: matrix(c0),
+        m: read.m0,
+    };
+    let branches: Vec<Matrix2> = g.into_iter().map(matrix).collect();
+    let deviation = design::deviation(checks, &read.checks, &base, &branches, rates);
     Ok(AtSpeed {
-        base: Coefficients {
-            k: matrix(k0),
-            c: matrix(c0),
-            m: m0,
-        },
-        branches: g.into_iter().map(matrix).collect(),
-        deviation: worst.map(|d| d / direct),
+        base,
+        branches,
+        deviation,
         shrunk,
     })
 }
@@ -424,108 +400,4 @@ fn passive(c0: &[f64; 4], g: &[[f64; 4]], rates: &[f64]) -> bool {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// `H(w) = K0 + i w C0 + G i w / (i w + d)` per coefficient, as a table would read it.
-    fn maxwell(k0: Matrix2, c0: Matrix2, g: Matrix2, d: f64, w: f64) -> Coefficients {
-        let e = |k: f64, c: f64, g: f64| {
-            // Re: k + g w^2 / (w^2 + d^2); Im / w: c + g d / (w^2 + d^2).
-            let den = w * w + d * d;
-            (k + g * w * w / den, c + g * d / den)
-        };
-        let (kxx, cxx) = e(k0.xx, c0.xx, g.xx);
-        let (kxy, cxy) = e(k0.xy, c0.xy, g.xy);
-        let (kyx, cyx) = e(k0.yx, c0.yx, g.yx);
-        let (kyy, cyy) = e(k0.yy, c0.yy, g.yy);
-        Coefficients {
-            k: Matrix2 {
-                xx: kxx,
-                xy: kxy,
-                yx: kyx,
-                yy: kyy,
-            },
-            c: Matrix2 {
-                xx: cxx,
-                xy: cxy,
-                yx: cyx,
-                yy: cyy,
-            },
-            m: Matrix2::default(),
-        }
-    }
-
-    #[test]
-    fn a_table_of_one_maxwell_branch_is_recovered_at_its_rate() {
-        // N/m, N s/m, N/m, 1/s: an anisotropic support with skew cross-coupling in K0 and a
-        // branch with a symmetric cross term inside its direct terms' limit.
-        let k0 = Matrix2 {
-            xx: 2e5,
-            xy: 4e4,
-            yx: -4e4,
-            yy: 3e5,
-        };
-        let c0 = Matrix2 {
-            xx: 100.0,
-            xy: 0.0,
-            yx: 0.0,
-            yy: 150.0,
-        };
-        let g = Matrix2 {
-            xx: 3e5,
-            xy: 5e4,
-            yx: 5e4,
-            yy: 2e5,
-        };
-        let d = 300.0;
-        let w: Vec<f64> = (0..=40).map(|i| 25.0 * i as f64).collect();
-        let table: Vec<Coefficients> = w.iter().map(|&w| maxwell(k0, c0, g, d, w)).collect();
-        let f = fit_at(&Design::new(&w, &[d]), &table, Matrix2::default(), false).unwrap();
-        let close = |a: &Matrix2, b: &Matrix2, scale: f64| {
-            [(a.xx, b.xx), (a.xy, b.xy), (a.yx, b.yx), (a.yy, b.yy)]
-                .iter()
-                .all(|(x, y)| (x - y).abs() <= 1e-9 * scale)
-        };
-        assert!(close(&f.base.k, &k0, 3e5), "{:?}", f.base.k);
-        assert!(close(&f.base.c, &c0, 150.0), "{:?}", f.base.c);
-        assert!(close(&f.branches[0], &g, 3e5), "{:?}", f.branches);
-        assert!(f.deviation.iter().all(|&e| e < 1e-12), "{:?}", f.deviation);
-        assert!(!f.shrunk);
-    }
-
-    #[test]
-    fn stiffness_rising_without_loss_is_no_passive_support_and_its_fit_says_so() {
-        // k(w) = 2e5 + 500 w N/m with c = 100 N s/m: a rising storage stiffness with no loss to
-        // go with it (Kramers-Kronig), which no sum of passive branches follows; the fit stays
-        // passive and reports the deviation it is left with.
-        let w: Vec<f64> = (0..=20).map(|i| 25.0 * i as f64).collect();
-        let table: Vec<Coefficients> = w
-            .iter()
-            .map(|&w| Coefficients {
-                k: Matrix2 {
-                    xx: 2e5 + 500.0 * w,
-                    xy: 0.0,
-                    yx: 0.0,
-                    yy: 2e5 + 500.0 * w,
-                },
-                c: Matrix2 {
-                    xx: 100.0,
-                    xy: 0.0,
-                    yx: 0.0,
-                    yy: 100.0,
-                },
-                m: Matrix2::default(),
-            })
-            .collect();
-        let rates = geometric(12.5, 1000.0, MAX_BRANCHES);
-        let f = fit_at(&Design::new(&w, &rates), &table, Matrix2::default(), true).unwrap();
-        let c0 = [f.base.c.xx, f.base.c.xy, f.base.c.yx, f.base.c.yy];
-        let g: Vec<[f64; 4]> = f
-            .branches
-            .iter()
-            .map(|m| [m.xx, m.xy, m.yx, m.yy])
-            .collect();
-        assert!(passive(&c0, &g, &rates));
-        assert!(f.deviation[0] > 0.05, "{:?}", f.deviation);
-    }
-}
+mod tests;
