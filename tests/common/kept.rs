@@ -65,7 +65,7 @@ pub fn poles(answer: &serde_json::Value) -> serde_json::Value {
         .map(|p| {
             let mut q = p.clone();
             if let Some(o) = q.as_object_mut() {
-                o.retain(|k, _| !matches!(k.as_str(), "shape" | "shapes" | "mode_shape"));
+                o.remove("shape");
             }
             q
         })

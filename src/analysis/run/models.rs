@@ -41,19 +41,19 @@ pub(super) fn fitted(
     control: &Control,
 ) -> Result<(RotorSystem, Vec<SupportFit>), RunError> {
     let system = assemble(model)?;
+    if !system.frequency_dependent() {
+        return Ok((system, vec![]));
+    }
     fit(&system, model, anchors, control)
 }
 
-/// [`fitted`] of an assembled `system`.
+/// [`fitted`] of an assembled `system` with supports over whirl frequency.
 pub(super) fn fit(
     system: &RotorSystem,
     model: &Model,
     anchors: &[f64],
     control: &Control,
 ) -> Result<(RotorSystem, Vec<SupportFit>), RunError> {
-    if !system.frequency_dependent() {
-        return Ok((system.clone(), vec![]));
-    }
     let options = FitOptions {
         anchors: anchors.to_vec(),
         ..FitOptions::default()

@@ -51,6 +51,9 @@ pub(super) fn fitted(
     control: &Control,
 ) -> Result<(RotorSystem, FittedTime), RunError> {
     let system = assemble(model)?;
+    if !system.frequency_dependent() {
+        return Ok((system, FittedTime::default()));
+    }
     let mut anchors: Vec<f64> = spec.speed.constant().into_iter().collect();
     let (mut fitted, mut fits) = fit(&system, model, &anchors, control)?;
     if fits.is_empty() || !compare {
