@@ -21,7 +21,8 @@ pub enum ApiError {
     Unsolvable(String),
     /// 413: the body is larger than the configured limit.
     TooLarge(usize),
-    /// 503 with `Retry-After`: the queue in front of the workers is full.
+    /// 503 with `Retry-After`: the queue in front of the workers is full, or the memory
+    /// budget cannot hold a synchronous answer now.
     Busy,
     /// 404.
     NotFound(String),
@@ -144,7 +145,9 @@ impl ApiError {
                 "busy",
                 "Service busy",
                 format!(
-                    "all workers are busy and the queue is full; retry in {RETRY_AFTER_SECONDS} s"
+                    "all workers are busy and the queue is full, or the memory budget \
+                     (WHIRL_MEMORY_BUDGET) cannot hold this answer beside the analyses running \
+                     and the answers being sent; retry in {RETRY_AFTER_SECONDS} s"
                 ),
                 vec![],
             ),

@@ -10,8 +10,10 @@
 //! - **Memory.** A long analysis holds its estimated peak heap (see `model::limits`) from a
 //!   budget while it runs, and waits when the budget is spent; one that could never fit is
 //!   refused at admission (422). Short analyses are bounded by their lane's count instead.
-//!   A synchronous answer then holds its size from the same budget until the client has
-//!   read it ([`WorkerPool::run_answer`]): slow readers cannot pile answers up beside it.
+//!   A synchronous answer holds its estimate from the same budget before it runs, and its
+//!   size after, until the client has read it ([`WorkerPool::run_answer`]): slow readers
+//!   cannot pile answers up beside it, and a short analysis whose answer the budget cannot
+//!   hold now is refused at once (503) rather than run.
 //! - **Admission.** Each lane counts its own: at most `workers + queue` long analyses and
 //!   `2 x threads + queue` short ones are running or waiting; beyond that a request is refused
 //!   at once with 503 and `Retry-After` rather than piling up memory. Long sweeps filling
@@ -62,6 +64,9 @@ pub struct WorkerPool {
     /// The memory budget of the long lane, in MiB permits.
     memory: Arc<Semaphore>,
     budget_mib: u64,
+    /// MiB of the budget set aside for each running short analysis's heap (none when the
+    /// budget is too small to set the short lane's worst case aside).
+    short_aside_mib: u64,
     /// Long analyses running or waiting (admission of the long lane).
     in_flight: Arc<AtomicUsize>,
     /// Short analyses running or waiting (admission of the short lane).
@@ -82,6 +87,9 @@ pub struct Admission {
     _slot: Slot,
     lane: Lane,
     mib: u32,
+    /// MiB a synchronous answer takes from the budget before it runs (see
+    /// [`WorkerPool::run_answer`]).
+    answer_mib: u32,
 }
 
 /// A claimed job's place in the pool (see [`WorkerPool::reserve`]).
@@ -128,6 +136,8 @@ impl WorkerPool {
         // The short lane's worst case is set aside from the budget.
         let reserved = short_permits as u64 * SHORT_BYTES;
         let budget_mib = (memory_budget.saturating_sub(reserved) / MIB).max(64);
+        let short_aside_mib =
+            (memory_budget / MIB).saturating_sub(budget_mib) / short_permits as u64;
         let short_pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads.max(1))
             .thread_name(|i| format!("whirl-short-{i}"))
@@ -138,6 +148,7 @@ impl WorkerPool {
             short: Arc::new(Semaphore::new(short_permits)),
             memory: Arc::new(Semaphore::new(budget_mib as usize)),
             budget_mib,
+            short_aside_mib,
             in_flight: Arc::new(AtomicUsize::new(0)),
             short_in_flight: Arc::new(AtomicUsize::new(0)),
             workers,
@@ -175,7 +186,7 @@ impl WorkerPool {
             - self.short.available_permits()
     }
 
-    /// Bytes of the budget held by running long analyses.
+    /// Bytes of the budget held by running analyses and by answers not yet sent.
     pub fn memory_in_use(&self) -> u64 {
         (self.budget_mib - self.memory.available_permits() as u64) * MIB
     }
@@ -193,6 +204,12 @@ impl WorkerPool {
             Lane::Short => 0,
             Lane::Long => cost.peak_bytes.div_ceil(MIB).max(1),
         };
+        self.fits(mib, path)?;
+        Ok((lane, mib))
+    }
+
+    /// 422 when `mib` could never fit in the memory budget.
+    fn fits(&self, mib: u64, path: &str) -> Result<(), ApiError> {
         if mib > self.budget_mib {
             return Err(ApiError::Invalid(Invalid::one(
                 path,
@@ -203,7 +220,21 @@ impl WorkerPool {
                 ),
             )));
         }
-        Ok((lane, mib))
+        Ok(())
+    }
+
+    /// MiB of the budget an analysis answering synchronously takes before it runs: a long
+    /// one its whole estimate; a short one its answer's estimate, and what of its heap the
+    /// short lane's set-aside does not cover (all of it when the budget is too small for
+    /// one), since its answer outlives its place in the lane.
+    fn answer_needs(&self, lane: Lane, cost: &Cost, mib: u64) -> u64 {
+        match lane {
+            Lane::Long => mib,
+            Lane::Short => {
+                let uncovered = cost.peak_bytes.saturating_sub(self.short_aside_mib * MIB);
+                uncovered.max(cost.response_bytes).div_ceil(MIB).max(1)
+            }
+        }
     }
 
     /// Takes a place for an analysis of this cost: 422 when it could never fit in the memory
@@ -211,6 +242,8 @@ impl WorkerPool {
     /// full.
     pub fn admit(&self, cost: &Cost, path: &str) -> Result<Admission, ApiError> {
         let (lane, mib) = self.needs(cost, path)?;
+        let answer_mib = self.answer_needs(lane, cost, mib);
+        self.fits(answer_mib, path)?;
         let (counter, bound) = self.counter(lane);
         let before = counter.fetch_add(1, Ordering::SeqCst);
         let slot = Slot(counter.clone());
@@ -221,6 +254,7 @@ impl WorkerPool {
             _slot: slot,
             lane,
             mib: mib as u32,
+            answer_mib: answer_mib as u32,
         })
     }
 
@@ -296,10 +330,13 @@ impl WorkerPool {
     /// Runs an admitted analysis like [`run`](Self::run), for an answer that stays in memory
     /// until the client has taken it: `f` returns the answer and its size in bytes, and that
     /// many bytes of the memory budget are held by the returned [`AnswerHold`] until it is
-    /// dropped (with the answer's last chunk). They are taken from what the analysis held
-    /// before its worker and memory are let go (a short analysis holds none: it waits for them
-    /// with its worker still in hand), so the answers waiting for slow readers and the
-    /// analyses running never hold more than the budget together.
+    /// dropped (with the answer's last chunk). The analysis takes its share of the budget
+    /// before it runs (see [`answer_needs`](Self::answer_needs)), and its answer keeps its
+    /// size of that share: the answers waiting for slow readers, the analyses rendering them
+    /// and the analyses running never hold more than the budget together, and no answer waits
+    /// for the budget once it exists. A long analysis waits for its share; a short one is
+    /// refused at once (503) when the budget cannot give it now, as is an answer larger than
+    /// its share when the budget cannot give the rest.
     pub async fn run_answer<T, F>(
         &self,
         admission: Admission,
@@ -309,16 +346,21 @@ impl WorkerPool {
         T: Send + 'static,
         F: FnOnce() -> (T, u64) + Send + 'static,
     {
-        let memory = if admission.mib > 0 {
-            Some(
+        let memory = match admission.lane {
+            Lane::Long if admission.answer_mib > 0 => Some(
                 self.memory
                     .clone()
-                    .acquire_many_owned(admission.mib)
+                    .acquire_many_owned(admission.answer_mib)
                     .await
                     .map_err(closed)?,
-            )
-        } else {
-            None
+            ),
+            Lane::Long => None,
+            Lane::Short => Some(
+                self.memory
+                    .clone()
+                    .try_acquire_many_owned(admission.answer_mib)
+                    .map_err(|_| ApiError::Busy)?,
+            ),
         };
         let lane = match admission.lane {
             Lane::Short => self.short.clone(),
@@ -339,9 +381,8 @@ impl WorkerPool {
             let more = self
                 .memory
                 .clone()
-                .acquire_many_owned(need - have)
-                .await
-                .map_err(closed)?;
+                .try_acquire_many_owned(need - have)
+                .map_err(|_| ApiError::Busy)?;
             hold = Some(match hold {
                 Some(mut m) => {
                     m.merge(more);
@@ -439,143 +480,5 @@ fn closed(_: tokio::sync::AcquireError) -> ApiError {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::model::limits::Size;
-
-    fn cost(work: f64, bytes: u64) -> Cost {
-        let size = Size {
-            assembled: 1,
-            dofs: 1,
-            internal: 0,
-            problems: 1,
-            points: 1,
-        };
-        let mut c = Cost::new(size, 0, 0, 0, 0).with_work(work);
-        c.peak_bytes = bytes;
-        c
-    }
-
-    #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-    async fn a_panic_fails_the_request_not_the_pool() {
-        let pool = WorkerPool::new(1, 0, 1, 1 << 30);
-        let c = cost(1.0, 1);
-        let a = pool.admit(&c, "rotor").unwrap();
-        let r: Result<(), ApiError> = pool.run(a, || {}, || panic!("boom")).await;
-        assert!(matches!(r, Err(ApiError::Internal(_))));
-        let a = pool.admit(&c, "rotor").unwrap();
-        assert_eq!(pool.run(a, || {}, || 7).await.unwrap(), 7);
-        assert_eq!(pool.in_flight(), 0);
-    }
-
-    #[test]
-    fn lanes_and_the_budget() {
-        assert_eq!(Lane::of(&cost(1e6, 1 << 20)), Lane::Short);
-        assert_eq!(Lane::of(&cost(1e12, 1 << 20)), Lane::Long);
-        assert_eq!(Lane::of(&cost(1e6, 1 << 30)), Lane::Long);
-        let pool = WorkerPool::new(2, 2, 2, 2 << 30);
-        assert!(matches!(
-            pool.admit(&cost(1e12, 8 << 30), "rotor"),
-            Err(ApiError::Invalid(_))
-        ));
-    }
-
-    #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-    async fn a_full_queue_refuses_at_once() {
-        let test = async {
-            let pool = Arc::new(WorkerPool::new(1, 1, 1, 1 << 30));
-            let long = cost(1e12, 1 << 20);
-            let (tx, rx) = std::sync::mpsc::channel::<()>();
-            let p = pool.clone();
-            let a = pool.admit(&long, "rotor").unwrap();
-            let running = tokio::spawn(async move {
-                p.run(
-                    a,
-                    || {},
-                    move || {
-                        rx.recv().ok();
-                    },
-                )
-                .await
-            });
-            // The first analysis holds the only worker before the second one queues.
-            while pool.long.available_permits() > 0 {
-                tokio::time::sleep(std::time::Duration::from_millis(1)).await;
-            }
-            let p = pool.clone();
-            let a = pool.admit(&long, "rotor").unwrap();
-            let waiting = tokio::spawn(async move { p.run(a, || {}, || ()).await });
-            assert!(!pool.ready());
-            assert!(matches!(pool.admit(&long, "rotor"), Err(ApiError::Busy)));
-            tx.send(()).unwrap();
-            running.await.unwrap().unwrap();
-            waiting.await.unwrap().unwrap();
-            assert!(pool.ready());
-            assert_eq!(pool.in_flight(), 0);
-        };
-        tokio::time::timeout(std::time::Duration::from_secs(20), test)
-            .await
-            .expect("the pool test must not hang");
-    }
-
-    #[test]
-    fn a_full_long_queue_still_admits_short_analyses() {
-        // 1 worker and 1 waiting place: two long sweeps fill the long lane.
-        let pool = WorkerPool::new(1, 1, 2, 1 << 30);
-        let long = cost(1e12, 1 << 20);
-        let short = cost(1e6, 1 << 20);
-        let held: Vec<Admission> = (0..2)
-            .map(|_| pool.admit(&long, "rotor").unwrap())
-            .collect();
-        assert!(matches!(pool.admit(&long, "rotor"), Err(ApiError::Busy)));
-        // The short lane has its own count: 2 per core x 2 threads running + 1 waiting.
-        let shorts: Vec<Admission> = (0..5)
-            .map(|_| pool.admit(&short, "rotor").unwrap())
-            .collect();
-        assert!(matches!(pool.admit(&short, "rotor"), Err(ApiError::Busy)));
-        assert_eq!(pool.in_flight(), 7);
-        drop(shorts);
-        drop(held);
-        assert_eq!(pool.in_flight(), 0);
-        assert!(pool.admit(&short, "rotor").is_ok());
-    }
-
-    #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-    async fn long_analyses_wait_for_memory() {
-        let pool = Arc::new(WorkerPool::new(4, 4, 1, 1 << 30));
-        let budget = pool.memory_budget();
-        let big = cost(1e12, budget * 3 / 4);
-        let (tx, rx) = std::sync::mpsc::channel::<()>();
-        let a = pool.admit(&big, "rotor").unwrap();
-        let p = pool.clone();
-        let first = tokio::spawn(async move {
-            p.run(
-                a,
-                || {},
-                move || {
-                    rx.recv().ok();
-                },
-            )
-            .await
-        });
-        while pool.memory_in_use() == 0 {
-            tokio::time::sleep(std::time::Duration::from_millis(1)).await;
-        }
-        // A second one does not fit beside the first: it waits, then runs.
-        let a = pool.admit(&big, "rotor").unwrap();
-        let p = pool.clone();
-        let started = Arc::new(std::sync::atomic::AtomicBool::new(false));
-        let s = started.clone();
-        let second = tokio::spawn(async move {
-            p.run(a, move || s.store(true, Ordering::SeqCst), || ())
-                .await
-        });
-        tokio::time::sleep(std::time::Duration::from_millis(100)).await;
-        assert!(!started.load(Ordering::SeqCst));
-        tx.send(()).unwrap();
-        first.await.unwrap().unwrap();
-        second.await.unwrap().unwrap();
-        assert!(started.load(Ordering::SeqCst));
-        assert_eq!(pool.memory_in_use(), 0);
-    }
-}
+#[path = "pool_tests.rs"]
+mod tests;

@@ -132,7 +132,7 @@ pub const SETTINGS: &[Setting] = &[
     Setting {
         var: "WHIRL_MEMORY_BUDGET",
         default: "half the memory (cgroup limit or RAM)",
-        meaning: "bytes all running analyses may hold by their estimates; beyond it they wait, and one that can never fit is refused (422); accepts K, M, G suffixes",
+        meaning: "bytes all running analyses may hold by their estimates, with the synchronous answers not yet sent; beyond it long analyses wait and short synchronous ones are refused (503), and one that can never fit is refused (422); accepts K, M, G suffixes",
     },
     Setting {
         var: "WHIRL_REQUEST_TIME_LIMIT",

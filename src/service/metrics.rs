@@ -169,13 +169,13 @@ pub fn render(st: &AppState, stats: Option<Stats>) -> String {
         st.pool.in_flight().saturating_sub(running)
     ));
     s.push_str(
-        "# HELP whirl_memory_reserved_bytes Heap reserved by running long analyses (estimates) and by answers not yet sent.\n",
+        "# HELP whirl_memory_reserved_bytes Heap reserved by running analyses (estimates: long ones, and the synchronous answers of short ones) and by answers not yet sent.\n",
     );
     s.push_str(&format!(
         "# TYPE whirl_memory_reserved_bytes gauge\nwhirl_memory_reserved_bytes {}\n",
         st.pool.memory_in_use()
     ));
-    s.push_str("# HELP whirl_memory_budget_bytes Heap long analyses may reserve.\n");
+    s.push_str("# HELP whirl_memory_budget_bytes Heap running analyses and answers not yet sent may reserve.\n");
     s.push_str(&format!(
         "# TYPE whirl_memory_budget_bytes gauge\nwhirl_memory_budget_bytes {}\n",
         st.pool.memory_budget()

@@ -75,8 +75,9 @@ pub const KINDS: &[Kind] = &[
         kind: "busy",
         status: 503,
         title: "Service busy",
-        meaning: "Every worker is busy and the queue is full (WHIRL_QUEUE), or the server is \
-            shutting down.",
+        meaning: "Every worker is busy and the queue is full (WHIRL_QUEUE), the memory budget \
+            (WHIRL_MEMORY_BUDGET) cannot hold a synchronous answer beside the analyses running \
+            and the answers still being sent to their clients, or the server is shutting down.",
         remedy: "Retry after the seconds in `Retry-After`.",
     },
     Kind {

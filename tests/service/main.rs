@@ -14,6 +14,7 @@ mod process;
 mod readme_client;
 mod readme_settings;
 mod server;
+mod slow_memory;
 mod slow_reader;
 mod store_memory;
 mod store_postgres;
