@@ -76,6 +76,8 @@ pub struct CampbellResult {
     /// Hand-overs between two branches that the tracking could not tell apart (veering, or a
     /// crossing with similar shapes): speed index and branch indices.
     pub ambiguities: Vec<Ambiguity>,
+    /// A torsional or axial train's interference diagram.
+    pub interference: Option<super::excitation::Interference>,
 }
 
 /// Which branches a Campbell diagram reports.
@@ -141,6 +143,7 @@ pub fn campbell_kept(
         threshold,
         reduction: None,
         ambiguities,
+        interference: None,
     })
 }
 

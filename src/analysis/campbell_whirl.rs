@@ -67,6 +67,7 @@ pub fn campbell_consistent(
         threshold,
         reduction: None,
         ambiguities,
+        interference: None,
     })
 }
 

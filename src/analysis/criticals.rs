@@ -85,6 +85,18 @@ pub fn criticals(
     branches: &[Curve],
     control: &Control,
 ) -> Result<Vec<Critical>, AnalysisError> {
+    crossings(model, speeds, branches, 1.0, control)
+}
+
+/// Every crossing of every branch with the line `|omega| = slope Omega` (an excitation of
+/// order `slope` of the speed), refined on `model`, by speed.
+pub fn crossings(
+    model: &DampedModel,
+    speeds: &[f64],
+    branches: &[Curve],
+    slope: f64,
+    control: &Control,
+) -> Result<Vec<Critical>, AnalysisError> {
     let doubled = model.layout == Layout::Doubled;
     let mut out = vec![];
     for (bi, b) in branches.iter().enumerate() {
@@ -93,7 +105,7 @@ pub fn criticals(
             .zip(b.poles.iter().zip(b.whirl_ratio))
             .filter_map(|(&w, (p, r))| p.map(|s| (w, s, r.unwrap_or(0.0))))
             .collect();
-        let g = |(w, s, _): Point| s.im.abs() - w;
+        let g = |(w, s, _): Point| s.im.abs() - slope * w;
         for pair in pts.windows(2) {
             let (p, q) = (pair[0], pair[1]);
             let (gp, gq) = (g(p), g(q));
@@ -105,7 +117,7 @@ pub fn criticals(
                 continue;
             }
             control.check()?;
-            let c = refine(model, doubled, p, q, control)?;
+            let c = refine(model, doubled, slope, p, q, control)?;
             if c.0 <= 0.0 {
                 continue;
             }
@@ -115,7 +127,7 @@ pub fn criticals(
             && g(last) == 0.0
             && last.0 > 0.0
         {
-            let c = refine(model, doubled, last, last, control)?;
+            let c = refine(model, doubled, slope, last, last, control)?;
             out.push(critical(c, bi, b.mode));
         }
     }
@@ -179,6 +191,8 @@ struct Follower<'a> {
     /// The bracket's extent in `s`: how far the branch moves over it.
     span: f64,
     last: Option<Point>,
+    /// Of the line crossed, `|omega| = slope Omega`.
+    slope: f64,
 }
 
 impl Follower<'_> {
@@ -208,7 +222,7 @@ impl Follower<'_> {
             best.s
         };
         self.last = Some((w, reported, best.whirl_ratio));
-        Ok(Some(best.s.im.abs() - w))
+        Ok(Some(best.s.im.abs() - self.slope * w))
     }
 }
 
@@ -277,11 +291,12 @@ fn predict(known: &[(f64, c64)], w: f64) -> c64 {
 fn refine(
     model: &DampedModel,
     doubled: bool,
+    slope: f64,
     p: Point,
     q: Point,
     control: &Control,
 ) -> Result<Point, AnalysisError> {
-    let g = |x: &Point| x.1.im.abs() - x.0;
+    let g = |x: &Point| x.1.im.abs() - slope * x.0;
     let interpolated = || -> Point {
         let (gp, gq) = (g(&p), g(&q));
         let t = if gp == gq { 0.0 } else { gp / (gp - gq) };
@@ -297,6 +312,7 @@ fn refine(
         known: vec![(p.0, matched(p.1, doubled)), (q.0, matched(q.1, doubled))],
         span: (matched(p.1, doubled) - matched(q.1, doubled)).norm(),
         last: None,
+        slope,
     };
     // The ends on the crossing model (for the hysteretic model they differ from the branch's).
     let fp = f.eval(p.0, control)?;

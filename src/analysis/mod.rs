@@ -7,6 +7,8 @@ pub mod campbell_whirl;
 pub mod consistent;
 pub mod control;
 pub mod criticals;
+pub mod excitation;
+pub mod interference;
 pub mod large;
 pub mod modal;
 pub mod nearest;

@@ -45,7 +45,12 @@ fn translations(p: &poles::Pole, dofs: &[Dof]) -> Vec<api::NodeDisplacement> {
             .map(|(d, x)| (d.node, *x))
             .collect()
     };
-    let (t, r) = (of(DofKind::Translation), of(DofKind::Rotation));
+    let (mut t, r) = (of(DofKind::Translation), of(DofKind::Rotation));
+    if t.is_empty() {
+        // A torsional or axial system: its twists or axial displacements.
+        t = of(DofKind::Twist);
+        t.extend(of(DofKind::Axial));
+    }
     let big = t
         .iter()
         .map(|(_, x)| *x)
@@ -148,6 +153,7 @@ pub fn modal(r: &ModalResult) -> api::ModalResponse {
         full_model: api::Storage::Dense,
         shaft: None,
         consistency,
+        motion: Default::default(),
     }
 }
 
@@ -204,6 +210,11 @@ pub fn campbell(r: &CampbellResult) -> api::CampbellResponse {
             .collect(),
         threshold: r.threshold.as_ref().map(|t| t.speed),
         reduction: r.reduction.as_ref().map(reduction),
+        motion: Default::default(),
+        interference: r
+            .interference
+            .as_ref()
+            .map(super::convert_train::interference),
     }
 }
 
@@ -357,6 +368,8 @@ pub fn coordinates(c: &[Coordinate]) -> Vec<api::CoordinateOut> {
                     DofKind::Translation => "translation",
                     DofKind::Rotation => "rotation",
                     DofKind::Mode => "mode",
+                    DofKind::Twist => "twist",
+                    DofKind::Axial => "axial",
                 }
                 .into(),
                 node: Some(d.node),

@@ -9,6 +9,7 @@
 
 pub mod convert;
 pub mod convert_audit;
+mod convert_train;
 pub mod error;
 mod output;
 mod units;
@@ -19,7 +20,7 @@ pub use output::Output;
 use crate::analysis::control::Control;
 use crate::analysis::run::{CaseOutcome, Outcome, run};
 use crate::model::Task;
-use crate::model::api::{BearingSetReport, ReportCheck, ReportResponse};
+use crate::model::api::{self, BearingSetReport, ReportCheck, ReportResponse};
 use crate::model::limits::BYTES_PER_VALUE;
 use crate::model::task::ModalTask;
 use crate::model::task::ReportPlan;
@@ -46,10 +47,26 @@ impl Output {
                     if let Some(c) = &m.consistency {
                         m.warnings = model.whirl_warnings(c.read_at[0], c.read_at[1]);
                     }
+                    m.motion = model.rotor.motion();
+                    if !m.motion.is_lateral() {
+                        // One pole per mode: the conjugates of a real motion are the same.
+                        m.poles.retain(|p| {
+                            let size = p.decay_rate.abs() + p.frequency.abs();
+                            p.frequency >= -1e-9 * size || p.whirl == api::Whirl::Internal
+                        });
+                        rigid_motion(&mut m.poles);
+                        m.shaft = None;
+                    }
                 }
                 m
             }),
-            Outcome::Campbell(r) => Output::Campbell(convert::campbell(&r)),
+            Outcome::Campbell(r) => Output::Campbell({
+                let mut c = convert::campbell(&r);
+                if let TaskKind::Campbell(t) = &task.kind {
+                    c.motion = t.model.rotor.motion();
+                }
+                c
+            }),
             Outcome::Stability {
                 threshold,
                 speeds,
@@ -219,4 +236,23 @@ fn report_of(
         });
     }
     Ok(report)
+}
+
+/// A free train's rigid turning (or sliding) is a double pole at 0, which the eigensolver
+/// returns as `sqrt(eps)`-sized round-off: reported once, exactly 0.
+fn rigid_motion(poles: &mut Vec<api::Pole>) {
+    use crate::analysis::interference::RIGID;
+    let size = |p: &api::Pole| p.decay_rate.hypot(p.frequency);
+    let largest = poles.iter().map(size).fold(0.0, f64::max);
+    let rigid = |p: &api::Pole| p.whirl != api::Whirl::Internal && size(p) <= RIGID * largest;
+    let Some(first) = poles.iter().position(rigid) else {
+        return;
+    };
+    let mut zero = poles[first].clone();
+    zero.decay_rate = 0.0;
+    zero.frequency = 0.0;
+    zero.damping_ratio = 0.0;
+    zero.log_decrement = None;
+    poles.retain(|p| !rigid(p));
+    poles.insert(0, zero);
 }

@@ -119,6 +119,17 @@ fn campbell(o: &mut CampbellResponse, f: Scale, to: SpeedUnit) {
     o.ambiguities.iter_mut().for_each(|a| a.speed = f(a.speed));
     o.threshold = o.threshold.map(f);
     reduction(&mut o.reduction, f);
+    if let Some(i) = &mut o.interference {
+        for e in &mut i.excitations {
+            e.frequency = e.frequency.map(f);
+        }
+        all(&mut i.operating_range, f);
+        for c in &mut i.criticals {
+            c.speed = c.speed.map(f);
+            c.frequency = f(c.frequency);
+        }
+        i.unit = to;
+    }
     o.output_unit = to;
 }
 

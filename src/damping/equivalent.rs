@@ -26,6 +26,10 @@ pub fn equivalent(k_loss: &CMat, mass: &CMat, omega: &[f64], phi: &CMat) -> CMat
     let kp = k_loss * phi;
     let mut c = CMat::zeros(n, n);
     for (i, w) in omega.iter().enumerate() {
+        if *w == 0.0 {
+            // A rigid-body mode (a free train's): no stiffness, no loss.
+            continue;
+        }
         let modal: f64 = (0..n).map(|r| (phi[(r, i)].conj() * kp[(r, i)]).re).sum();
         let cbar = modal / w;
         if cbar == 0.0 {
@@ -48,6 +52,9 @@ pub fn equivalent_matrix(k_loss: &Sparse, mass: &Sparse, basis: &ModalBasis) -> 
     let n = mass.nrows();
     let mut c = RMat::zeros(n, n);
     for (i, w) in basis.omega.iter().enumerate() {
+        if *w == 0.0 {
+            continue;
+        }
         let cbar = modal[(i, i)] / w;
         if cbar == 0.0 {
             continue;

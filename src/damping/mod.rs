@@ -149,12 +149,12 @@ impl Bases {
             let l: f64 = (0..phi_n.nrows())
                 .map(|k| (phi_n[(k, i)].conj() * kp[(k, i)]).re)
                 .sum();
-            if l > 0.0 {
+            if l > 0.0 && w > 0.0 {
                 out.push((i, w, l, false));
             }
         }
         for (i, &w) in self.axis.omega.iter().enumerate() {
-            if loss_r[(i, i)] > 0.0 {
+            if loss_r[(i, i)] > 0.0 && w > 0.0 {
                 out.push((i, w, loss_r[(i, i)], true));
             }
         }

@@ -66,7 +66,7 @@ pub fn branches(
     };
     let nonrotating = |i: usize, b: &mut Builder| {
         let loss: Vec<f64> = loss_n.iter().map(|l| l[i].max(0.0)).collect();
-        if loss.iter().any(|&l| l > 0.0) {
+        if omega_n[i] > 0.0 && loss.iter().any(|&l| l > 0.0) {
             let col = (0..n_layout).map(|r| coupling_n[(r, i)]).collect();
             b.add(&spec.nonrotating, omega_n[i], &loss, i, 0.0, col);
         }
@@ -176,7 +176,7 @@ pub fn modal_form(
             (&spec.nonrotating, loss_n[(i, i)], 0.0),
             (&spec.rotating, loss_r[(i, i)], 1.0),
         ] {
-            if loss <= 0.0 {
+            if loss <= 0.0 || w == 0.0 {
                 continue;
             }
             for (j, d) in set.rates(w).into_iter().enumerate() {

@@ -35,12 +35,15 @@ pub fn section(e: &ShaftElement) -> Section {
 }
 
 /// The matrices of one element: bending stiffness `k`, mass, gyroscopic, and shear parameter.
+/// Without rotary inertia the mass is the translational part alone; without gyroscopic
+/// moments `G = 0` (ROSS's element options).
 pub fn element_matrices(e: &ShaftElement) -> (Mat4, Mat4, Mat4, f64) {
-    if e.conical() {
+    let (k, mt, mr, g, p) = if e.conical() {
         let c = cone(e);
         (
             conical::stiffness(&c),
-            conical::mass(&c),
+            conical::translational_mass(&c),
+            conical::rotary_mass(&c),
             conical::gyroscopic(&c),
             conical::shear_parameter(&c),
         )
@@ -48,11 +51,22 @@ pub fn element_matrices(e: &ShaftElement) -> (Mat4, Mat4, Mat4, f64) {
         let sec = section(e);
         (
             element::stiffness(&sec),
-            element::mass(&sec),
+            element::translational_mass(&sec),
+            element::rotary_mass(&sec),
             element::gyroscopic(&sec),
             sec.shear_parameter(),
         )
+    };
+    let mut m = mt;
+    if e.rotary_inertia {
+        for (row, r) in m.iter_mut().zip(mr) {
+            for (x, y) in row.iter_mut().zip(r) {
+                *x += y;
+            }
+        }
     }
+    let g = if e.gyroscopic { g } else { [[0.0; 4]; 4] };
+    (k, m, g, p)
 }
 
 /// A conical element, with Cowper's factor of its mean diameters where none was given (ROSS).
@@ -212,6 +226,8 @@ fn structure_parts(rotor: &BeamRotor) -> Parts {
         match el {
             Element::Beam(b) => add_element(&mut s, 2 * e, b),
             Element::Coupling(c) => add_coupling(&mut s, 2 * e, c),
+            // Refused by the lateral analyses (`Rotor::parse_motion`).
+            Element::Gear(_) => {}
         }
     }
     for sl in rotor.sleeves() {
@@ -243,6 +259,7 @@ impl RotorSystem {
             Rotor::Jeffcott(j) => Ok(Self::jeffcott(j)),
             Rotor::Beam(b) => beam(b),
             Rotor::Matrices(m) => Ok(matrices(m)),
+            Rotor::Train(t) => Ok(super::train::assemble(t)),
         }
     }
 }

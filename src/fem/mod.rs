@@ -6,3 +6,4 @@ pub mod conical;
 pub mod element;
 pub mod guyan;
 pub mod modal;
+pub mod train;

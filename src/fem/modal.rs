@@ -48,6 +48,20 @@ impl ModalBasis {
         let (k, m) = pencil(system);
         let modes =
             linalg::symmetric_modes(&k.to_dense(), &m.to_dense()).map_err(ModalError::Linalg)?;
+        if system.axial_or_torsional() {
+            // A free train turns (or slides) as a rigid body: a mode at 0, with no stiffness
+            // and so no loss for the damping models to carry.
+            let largest = modes.omega_squared.iter().cloned().fold(0.0, f64::max);
+            let rigid = |w2: f64| w2 <= 1e-11 * largest;
+            return Ok(ModalBasis {
+                omega: modes
+                    .omega_squared
+                    .iter()
+                    .map(|&w2| if rigid(w2) { 0.0 } else { w2.sqrt() })
+                    .collect(),
+                phi: modes.phi,
+            });
+        }
         supported(&modes.omega_squared)?;
         Ok(ModalBasis {
             omega: modes.omega_squared.iter().map(|w2| w2.sqrt()).collect(),

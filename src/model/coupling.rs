@@ -27,6 +27,12 @@ pub struct Coupling {
     /// `[left, right]`, kg m^2.
     pub polar_inertia: [f64; 2],
     pub transverse_inertia: [f64; 2],
+    /// N m/rad and N m s/rad.
+    pub torsional_stiffness: f64,
+    pub torsional_damping: f64,
+    /// N/m and N s/m.
+    pub axial_stiffness: f64,
+    pub axial_damping: f64,
 }
 
 impl Coupling {
@@ -43,7 +49,10 @@ impl Coupling {
         at: &str,
         bad: &mut Invalid,
     ) -> Option<Self> {
-        let shaft_only: [(&str, bool); 9] = [
+        let shaft_only: [(&str, bool); 12] = [
+            ("shear_effects", seg.shear_effects.is_some()),
+            ("rotary_inertia", seg.rotary_inertia.is_some()),
+            ("gyroscopic", seg.gyroscopic.is_some()),
             ("material", !seg.material.is_empty()),
             ("inner_diameter", seg.inner_diameter != 0.0),
             ("elements", seg.elements.is_some_and(|n| n != 1)),
@@ -74,6 +83,10 @@ impl Coupling {
         let kr = field("angular_stiffness", c.angular_stiffness);
         let ct = field("translational_damping", c.translational_damping);
         let cr = field("angular_damping", c.angular_damping);
+        let kz = field("torsional_stiffness", c.torsional_stiffness);
+        let cz = field("torsional_damping", c.torsional_damping);
+        let ka = field("axial_stiffness", c.axial_stiffness);
+        let ca = field("axial_damping", c.axial_damping);
         let pair = |bad: &mut Invalid, name: &str, v: [f64; 2]| -> Option<[f64; 2]> {
             let l = bad.check(&format!("{at}.{name}[0]"), non_negative(v[0]));
             let r = bad.check(&format!("{at}.{name}[1]"), non_negative(v[1]));
@@ -97,6 +110,10 @@ impl Coupling {
             mass: mass?,
             polar_inertia: ip?,
             transverse_inertia: id?,
+            torsional_stiffness: kz?,
+            torsional_damping: cz?,
+            axial_stiffness: ka?,
+            axial_damping: ca?,
         })
     }
 }

@@ -5,9 +5,11 @@
 //! the first, so that a client fixes its request in one round trip.
 
 pub mod api;
+pub mod beam;
 pub mod coupling;
 pub mod damping;
 pub mod error;
+pub mod gear;
 pub mod jeffcott;
 pub mod json;
 pub mod limits;
@@ -23,6 +25,7 @@ pub mod spline;
 pub mod supports;
 pub mod tagged;
 pub mod task;
+pub mod train;
 
 pub use error::{FieldError, Invalid};
 pub use limits::{Cost, Limits};

@@ -43,9 +43,33 @@ pub struct ShaftElement {
     /// N m.
     pub torque: f64,
     pub rayleigh: Option<Rayleigh>,
+    /// The sections' rotary (transverse) inertia counted (ROSS's `rotary_inertia`).
+    pub rotary_inertia: bool,
+    /// Gyroscopic moments counted (ROSS's `gyroscopic`).
+    pub gyroscopic: bool,
 }
 
 impl ShaftElement {
+    /// Shear modulus `E / (2 (1 + nu))`, Pa.
+    pub fn shear_modulus(&self) -> f64 {
+        self.young_modulus / (2.0 * (1.0 + self.poisson_ratio))
+    }
+
+    /// Mean of its ends' areas, m^2 (its axial section, as ROSS takes it).
+    pub fn mean_area(&self) -> f64 {
+        let a = |o: f64, i: f64| std::f64::consts::PI / 4.0 * (o * o - i * i);
+        0.5 * (a(self.outer_diameter, self.inner_diameter)
+            + a(self.outer_diameter_right, self.inner_diameter_right))
+    }
+
+    /// Mean of its ends' polar second moments of area, m^4 (its torsional section, as ROSS
+    /// takes it).
+    pub fn mean_polar_moment(&self) -> f64 {
+        let j = |o: f64, i: f64| std::f64::consts::PI / 32.0 * (o.powi(4) - i.powi(4));
+        0.5 * (j(self.outer_diameter, self.inner_diameter)
+            + j(self.outer_diameter_right, self.inner_diameter_right))
+    }
+
     /// Whether its diameters differ between its ends.
     pub fn conical(&self) -> bool {
         self.outer_diameter != self.outer_diameter_right
@@ -67,6 +91,8 @@ impl ShaftElement {
 pub enum Element {
     Beam(ShaftElement),
     Coupling(Coupling),
+    /// A gear mesh between two shafts (torsional and axial analyses).
+    Gear(super::gear::Gear),
 }
 
 impl Element {
@@ -75,6 +101,7 @@ impl Element {
         match self {
             Element::Beam(b) => b.length,
             Element::Coupling(c) => c.length,
+            Element::Gear(g) => g.length,
         }
     }
 
@@ -83,6 +110,7 @@ impl Element {
         match self {
             Element::Beam(b) => b.mass(),
             Element::Coupling(c) => c.total_mass(),
+            Element::Gear(_) => 0.0,
         }
     }
 
@@ -90,7 +118,7 @@ impl Element {
     pub fn beam(&self) -> Option<&ShaftElement> {
         match self {
             Element::Beam(b) => Some(b),
-            Element::Coupling(_) => None,
+            Element::Coupling(_) | Element::Gear(_) => None,
         }
     }
 
@@ -99,6 +127,7 @@ impl Element {
         match self {
             Element::Beam(b) => b.loss_factor,
             Element::Coupling(c) => c.loss_factor,
+            Element::Gear(_) => 0.0,
         }
     }
 }
@@ -124,6 +153,8 @@ pub struct SectionInput<'a> {
     pub axial_force: Option<f64>,
     pub torque: Option<f64>,
     pub rayleigh: Option<&'a RayleighInput>,
+    /// `(shear_effects, rotary_inertia, gyroscopic)` as given.
+    pub flags: [Option<bool>; 3],
 }
 
 /// A validated section: an element of length `length` taken from `t0` to `t1` (fractions of
@@ -137,6 +168,8 @@ pub struct Section {
     axial_force: f64,
     torque: f64,
     rayleigh: Option<Rayleigh>,
+    /// `(rotary_inertia, gyroscopic)`.
+    inertia: (bool, bool),
 }
 
 impl Section {
@@ -158,6 +191,8 @@ impl Section {
             axial_force: self.axial_force,
             torque: self.torque,
             rayleigh: self.rayleigh,
+            rotary_inertia: self.inertia.0,
+            gyroscopic: self.inertia.1,
         }
     }
 }
@@ -195,7 +230,18 @@ pub fn parse_section(
             hollow_ok = false;
         }
     }
+    let [shear_effects, rotary, gyro] = s.flags;
     let shear = match s.shear_factor {
+        // An Euler-Bernoulli element: no shear deformation, `P = 0`.
+        _ if shear_effects == Some(false) => {
+            if s.shear_factor.is_some() {
+                bad.push(
+                    format!("{at}.shear_factor"),
+                    "an element without `shear_effects` takes no shear factor",
+                );
+            }
+            Some(Some(0.0))
+        }
         None => Some(None),
         Some(x) => bad
             .check(&format!("{at}.shear_factor"), positive(x))
@@ -246,6 +292,7 @@ pub fn parse_section(
         axial_force: axial?,
         torque: torque?,
         rayleigh: rayleigh?,
+        inertia: (rotary.unwrap_or(true), gyro.unwrap_or(true)),
     })
     .filter(|_| hollow_ok)
 }
@@ -309,6 +356,7 @@ pub fn parse_sleeves(
                 axial_force: s.axial_force,
                 torque: s.torque,
                 rayleigh: s.rayleigh_damping.as_ref(),
+                flags: [None; 3],
             },
             &at,
             materials,
@@ -358,6 +406,7 @@ mod tests {
             axial_force: 0.0,
             torque: 0.0,
             rayleigh: None,
+            inertia: (true, true),
         };
         let (a, b) = (s.element(0.5, 0.0, 0.5), s.element(0.5, 0.5, 1.0));
         assert!((a.outer_diameter_right - 0.15).abs() < 1e-16);

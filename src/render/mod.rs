@@ -108,6 +108,7 @@ fn svg(out: &Output) -> Result<Option<String>, ApiError> {
     // The plots label rad/s and rpm themselves, whatever unit the JSON answer is in.
     let out = &*out.in_rad_s();
     let r = match out {
+        Output::Campbell(c) if c.interference.is_some() => plot::interference(c),
         Output::Campbell(c) => plot::campbell(c),
         Output::Stability(s) => plot::stability(s),
         Output::Time(t) => plot::time(t),

@@ -8,6 +8,7 @@ use plotters::style::{RGBAColor, RGBColor};
 
 pub mod axis;
 mod campbell;
+mod interference;
 mod modes;
 mod response;
 mod stability;
@@ -15,6 +16,7 @@ mod study;
 pub mod svg;
 
 pub use campbell::{campbell, campbell_with, decay_range};
+pub use interference::interference;
 pub use modes::{modal, modal_plotted};
 pub use response::{time, unbalance};
 pub use stability::{stability, stability_with};

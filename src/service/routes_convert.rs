@@ -103,7 +103,7 @@ pub(super) enum ConvertErrors {
 /// ROSS's node numbers are kept, nodes off the shaft included. Shaft elements (conical, with
 /// sleeves on the same nodes, axial force, torque, proportional damping), disks, point masses,
 /// bearings and seals (constant or tabulated, with ROSS's interpolation, linked to pedestals
-/// by `n_link`) are converted; axial and torsional degrees of freedom are dropped. `warnings`
+/// by `n_link`) are converted, with their torsional and axial data (couplings, `kzz`, `czz`) and elements' options for the `motion` analyses. `warnings`
 /// says what changed. An element a Whirl rotor cannot hold is a 422 naming its table.
 #[utoipa::path(post, path = "/v1/convert/ross", tag = "models",
     request_body(content = inline(RossFileBody), content_type = "application/toml",

@@ -36,6 +36,11 @@ pub enum DofKind {
     Rotation,
     /// Modal coordinate `eta_k` of a reduced system (`node` is the mode index `k`, from 0).
     Mode,
+    /// A shaft node's twist about the axis, rad, in its own shaft's angles (a torsional system:
+    /// real motion in a complex coordinate).
+    Twist,
+    /// A shaft node's displacement along the axis, m (an axial system).
+    Axial,
 }
 
 /// One complex degree of freedom: its node and kind.
@@ -203,10 +208,24 @@ impl RotorSystem {
         w
     }
 
-    /// The degree of freedom of a node's translation.
+    /// The degree of freedom a load at a node acts on: its translation (its twist or axial
+    /// displacement in a torsional or axial system).
     pub fn translation(&self, node: usize) -> Option<usize> {
+        self.dofs.iter().position(|d| {
+            d.node == node
+                && matches!(
+                    d.kind,
+                    DofKind::Translation | DofKind::Twist | DofKind::Axial
+                )
+        })
+    }
+
+    /// Whether its coordinates are real motions along or about the axis (a torsional or axial
+    /// system): its poles come in conjugate pairs, one mode each, and a mode with no stiffness
+    /// (a free train's rigid turning) is a pole at 0, not a rotor that needs supports.
+    pub fn axial_or_torsional(&self) -> bool {
         self.dofs
-            .iter()
-            .position(|d| d.node == node && d.kind == DofKind::Translation)
+            .first()
+            .is_some_and(|d| matches!(d.kind, DofKind::Twist | DofKind::Axial))
     }
 }

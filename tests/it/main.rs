@@ -53,6 +53,8 @@ mod stability_large;
 mod statics_large;
 mod time;
 mod time_large;
+mod train;
+mod train_ross;
 mod units;
 mod whirl_audit;
 mod whirl_fit_time;

@@ -280,6 +280,8 @@ pub fn campbell_data() -> CampbellResponse {
     CampbellResponse {
         nondimensional: false,
         output_unit: Default::default(),
+        motion: Default::default(),
+        interference: None,
         branches: vec![
             branch(1, Whirl::Forward, &|w| 122.4 + 0.01 * w, &|w| {
                 -2.0 + 0.00568 * w

@@ -8,6 +8,7 @@ use crate::analysis::AnalysisError;
 use crate::analysis::campbell;
 use crate::analysis::campbell_whirl;
 use crate::analysis::control::Control;
+use crate::analysis::interference;
 use crate::analysis::refine;
 use crate::damping::DampedModel;
 use crate::model::task::CampbellTask;
@@ -22,7 +23,11 @@ impl Analysis for CampbellTask {
             reduce,
             sparse,
             max_states,
+            interference,
         } = self;
+        if let Some(spec) = interference {
+            return train(self, spec, control);
+        }
         let speeds = speeds.as_slice();
         let system = assemble(model)?;
         if system.frequency_dependent() {
@@ -95,4 +100,53 @@ impl Analysis for CampbellTask {
         refine::outside_box(&mut r, full, bound)?;
         Ok(Outcome::Campbell(r))
     }
+}
+
+/// A train's torsional or axial sweep: one branch per mode, and the interference diagram
+/// refined on the model (interpolated on supports over whirl frequency).
+fn train(
+    task: &CampbellTask,
+    spec: &interference::Spec,
+    control: &Control,
+) -> Result<Outcome, RunError> {
+    let model = &task.model;
+    let speeds = task.speeds.as_slice();
+    let system = assemble(model)?;
+    let keep = campbell::Keep {
+        below: task.max_frequency,
+        lowest: task.modes,
+    };
+    let (mut r, damped) = if system.frequency_dependent() {
+        let r = campbell_whirl::campbell_consistent(
+            &system,
+            &model.damping,
+            speeds,
+            keep,
+            false,
+            control,
+        )
+        .map_err(|e| rigid_body(e, &model.rotor))?;
+        (r, None)
+    } else {
+        let damped = DampedModel::build(&system, &model.damping)
+            .map_err(|e| damping_error(e, &model.rotor))?;
+        let r = campbell::campbell_below(
+            &system,
+            &model.damping,
+            &damped,
+            speeds,
+            keep,
+            false,
+            control,
+        )?;
+        (r, Some(damped))
+    };
+    interference::real_modes(&mut r);
+    r.interference = Some(interference::interference(
+        &r,
+        damped.as_ref(),
+        spec,
+        control,
+    )?);
+    Ok(Outcome::Campbell(r))
 }

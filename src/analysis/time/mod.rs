@@ -24,7 +24,7 @@ use super::control::{Cancelled, Control};
 use crate::damping::{DampedModel, ModelKind};
 use crate::linalg::{self, CMat, LinalgError, RMat, c64};
 pub use crate::model::loads::{SpeedLaw, TimeSpec};
-use crate::system::{DofKind, RotorSystem};
+use crate::system::RotorSystem;
 use crate::system::{Layout, Realized};
 
 /// How the response was computed.
@@ -308,12 +308,11 @@ pub struct LoadColumns {
     pub whirls: Vec<(usize, usize, f64)>,
 }
 
-/// The translation degree of freedom of a node (validated to exist).
+/// The degree of freedom a load at a node acts on (validated to exist): its translation, or its
+/// twist or axial displacement in a torsional or axial system.
 pub fn translation(system: &RotorSystem, node: usize) -> usize {
     system
-        .dofs
-        .iter()
-        .position(|d| d.node == node && d.kind == DofKind::Translation)
+        .translation(node)
         .expect("validated: every reported or loaded node has a translation")
 }
 

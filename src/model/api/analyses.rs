@@ -27,6 +27,10 @@ pub struct ModalRequest {
     /// `cpm`; the answer's `output_unit` says which. Decay rates stay in 1/s.
     #[serde(default)]
     pub output_unit: Option<SpeedUnit>,
+    /// The motion solved: `lateral` (default), `torsional` or `axial` (a beam rotor's; see
+    /// the Motion schema).
+    #[serde(default)]
+    pub motion: super::Motion,
 }
 
 /// Body of `POST /v1/campbell` and `POST /v1/stability`.
@@ -60,6 +64,14 @@ pub struct SweepRequest {
     /// `cpm`; the answer's `output_unit` says which. Decay rates stay in 1/s.
     #[serde(default)]
     pub output_unit: Option<SpeedUnit>,
+    /// The motion solved: `lateral` (default), `torsional` or `axial` (a beam rotor's; see
+    /// the Motion schema).
+    #[serde(default)]
+    pub motion: super::Motion,
+    /// Campbell with `motion: torsional` (or axial): the interference diagram's excitations
+    /// (orders of each shaft's speed, line frequencies) and operating range.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub interference: Option<super::InterferenceInput>,
 }
 
 /// Direction of whirl of a pole: `forward` (whirl frequency > 0), `backward` (< 0), or
@@ -168,6 +180,11 @@ pub struct ModalResponse {
     /// frequency each reads them at.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub consistency: Option<ConsistencyInfo>,
+    /// The motion solved. Torsional and axial motion is real: each mode is reported once (its
+    /// pole of frequency >= 0; the conjugate is the same motion), its shape the twist (rad) or
+    /// axial displacement of each node in `re`, `im`.
+    #[serde(default)]
+    pub motion: super::Motion,
     /// How the model was read where it needed saying: supports held at the ends of their
     /// tables of coefficients outside them.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -296,6 +313,13 @@ pub struct CampbellResponse {
     pub threshold: Option<f64>,
     /// The modal reduction the sweep ran on; null when it ran on the full model.
     pub reduction: Option<ReductionInfo>,
+    /// The motion solved; torsional and axial sweeps keep one branch per mode (frequency >= 0).
+    #[serde(default)]
+    pub motion: super::Motion,
+    /// A torsional or axial sweep's interference diagram: the excitations, their crossings
+    /// with each mode and API 684's separation margins.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub interference: Option<super::Interference>,
     /// How the model was read where it needed saying: supports held at the ends of their
     /// tables of coefficients outside them.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]

@@ -496,6 +496,10 @@ pub struct FrequencyResponseRequest {
     /// `cpm`; the answer's `output_unit` says which. Decay rates stay in 1/s.
     #[serde(default)]
     pub output_unit: Option<SpeedUnit>,
+    /// The motion solved: `lateral` (default; the input a force, m/N), `torsional` (the input a
+    /// torque at `input.node`, the answer in rad/(N m)) or `axial` (an axial force, m/N).
+    #[serde(default)]
+    pub motion: super::Motion,
 }
 
 /// Answer of `POST /v1/frequency-response`: per unit force (m/N) at each frequency, the

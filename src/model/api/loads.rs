@@ -122,6 +122,11 @@ pub struct TimeResponseRequest {
     /// the other way round (default true). The answer's `reduction` says what was solved.
     #[serde(default)]
     pub modal_reduction: Option<bool>,
+    /// The motion solved: `lateral` (default), `torsional` (each force's history a torque,
+    /// N m, the answer's `x` a twist, rad) or `axial` (an axial force, the answer's `x` an
+    /// axial displacement, m). Unbalances act laterally only.
+    #[serde(default)]
+    pub motion: super::Motion,
 }
 
 /// The response of one node.

@@ -14,6 +14,7 @@ mod report;
 mod service;
 mod shaft;
 mod studies;
+mod train;
 mod units;
 
 pub use analyses::*;
@@ -24,6 +25,7 @@ pub use report::*;
 pub use service::*;
 pub use shaft::*;
 pub use studies::*;
+pub use train::*;
 pub use units::*;
 
 use serde::{Deserialize, Deserializer, Serialize};
@@ -191,52 +193,22 @@ pub struct SegmentInput {
     /// nodes and its `outer_diameter` draws it; it takes no material or other shaft field.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub coupling: Option<CouplingInput>,
-}
-
-/// A flexible coupling between two shaft ends (ROSS's `CouplingElement`, lateral part): springs
-/// and dampers between the translations and between the rotations of its two nodes, and the
-/// masses and inertias of its two halves lumped on them. It turns with the shafts, so its
-/// damping is rotating damping (viscous, and hysteretic by `loss_factor`). Isotropic: a
-/// coupling that is stiffer in one direction than the other turns that direction with it,
-/// which no linear time-invariant model holds.
-#[derive(Debug, Clone, Default, Deserialize, Serialize, ToSchema)]
-#[serde(deny_unknown_fields)]
-pub struct CouplingInput {
-    /// Lateral (translational) stiffness between the two nodes, N/m (>= 0; ROSS's `kt_x = kt_y`).
-    #[serde(default)]
-    #[schema(minimum = 0.0)]
-    pub translational_stiffness: f64,
-    /// Angular (bending) stiffness between the two nodes' rotations, N m/rad (>= 0; ROSS's
-    /// `kr_x = kr_y`).
-    #[serde(default)]
-    #[schema(minimum = 0.0)]
-    pub angular_stiffness: f64,
-    /// Lateral viscous damping, N s/m (>= 0), rotating with the coupling.
-    #[serde(default)]
-    #[schema(minimum = 0.0)]
-    pub translational_damping: f64,
-    /// Angular viscous damping, N m s/rad (>= 0), rotating with the coupling.
-    #[serde(default)]
-    #[schema(minimum = 0.0)]
-    pub angular_damping: f64,
-    /// Loss factor of the coupling's stiffness (elastomeric couplings): rotating hysteretic
-    /// damping, in [0, 1).
-    #[serde(default)]
-    #[schema(minimum = 0.0, exclusive_maximum = 1.0)]
-    pub loss_factor: f64,
-    /// Mass of each half, kg (>= 0), lumped on its node: `[left, right]`.
-    #[serde(default)]
-    #[schema(min_items = 2, max_items = 2)]
-    pub mass: [f64; 2],
-    /// Polar moment of inertia of each half, kg m^2 (>= 0): `[left, right]`.
-    #[serde(default)]
-    #[schema(min_items = 2, max_items = 2)]
-    pub polar_inertia: [f64; 2],
-    /// Transverse (diametral) moment of inertia of each half, kg m^2 (>= 0; default half the
-    /// polar one, as ROSS takes it): `[left, right]`.
+    /// A gear mesh instead of a shaft: the element joins the gear on the shaft before it to
+    /// the gear on the shaft after it, which turns `ratio` times as fast. Torsional and axial
+    /// analyses only (`motion`); its `length` places the nodes and its `outer_diameter` draws it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    #[schema(min_items = 2, max_items = 2)]
-    pub transverse_inertia: Option<[f64; 2]>,
+    pub gear: Option<GearInput>,
+    /// `false`: an Euler-Bernoulli element (no shear deformation; ROSS's `shear_effects`).
+    /// Default true (Timoshenko).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shear_effects: Option<bool>,
+    /// `false`: the element's sections have no rotary (transverse) inertia, and no gyroscopic
+    /// moments (ROSS's `rotary_inertia`). Default true.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rotary_inertia: Option<bool>,
+    /// `false`: the element has no gyroscopic moments (ROSS's `gyroscopic`). Default true.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gyroscopic: Option<bool>,
 }
 
 /// A rigid disk at a node.
@@ -335,6 +307,13 @@ pub struct SupportInput {
     pub myx: Option<Coefficient>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub myy: Option<Coefficient>,
+    /// Axial stiffness, N/m (a thrust bearing; ROSS's `kzz`): read by axial analyses
+    /// (`motion: axial`) only, from the same `speeds`/`frequencies` as the others.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub kzz: Option<Coefficient>,
+    /// Axial damping, N s/m (ROSS's `czz`): axial analyses only.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub czz: Option<Coefficient>,
     /// Spin speeds of a table of coefficients, rad/s, increasing (2 to 512 of them; each speed
     /// keeps a state matrix, counted against the memory budget before anything is built).
     #[serde(default, skip_serializing_if = "Option::is_none")]

@@ -27,8 +27,10 @@
 //! - Couplings (`CouplingElement`): a segment `{"length", "outer_diameter", "coupling"}` on
 //!   their node, isotropic (`ross::coupling`); their dampers turn with the shafts in Whirl
 //!   (a warning says so).
-//! - Axial and torsional degrees of freedom are dropped (a Whirl rotor is lateral), with
-//!   `kzz`, `czz`, `mzz` and `mz`.
+//! - Axial and torsional data are kept for the torsional and axial analyses (`motion`):
+//!   couplings' `kt_z`, `kr_z`, `ct_z`, `cr_z`, bearings' `kzz`, `czz`; the elements' options
+//!   `shear_effects`, `rotary_inertia` and `gyroscopic` are carried. Bearings' `mzz` and point
+//!   masses' `mz` have no place (a warning says so).
 
 use std::collections::BTreeMap;
 
@@ -66,12 +68,6 @@ pub fn to_whirl(file: &RossFile, limits: &Limits) -> Result<Converted, Invalid> 
             file.parameters.join(", ")
         ));
     }
-    warnings.push(
-        "ROSS's axial (z) and torsional degrees of freedom are dropped: a Whirl rotor has the \
-         lateral ones (x, y and the two tilts of each shaft node, x and y of each node off the \
-         shaft), which ROSS's axial and torsional ones do not couple to"
-            .into(),
-    );
 
     // The shaft: elements by node, in the file's order at each node; a coupling on a node of
     // its own.
@@ -411,6 +407,8 @@ fn mergeable(prev: &ShaftElement, e: &ShaftElement) -> bool {
         && prev.alpha == e.alpha
         && prev.beta == e.beta
         && prev.shear == e.shear
+        && (prev.shear_effects, prev.rotary_inertia, prev.gyroscopic)
+            == (e.shear_effects, e.rotary_inertia, e.gyroscopic)
 }
 
 /// The fields a shaft segment and a sleeve share.
@@ -425,8 +423,18 @@ fn element_fields(e: &ShaftElement, material: &str) -> Map<String, Value> {
         m.insert("inner_diameter_right".into(), json!(e.idr));
     }
     m.insert("material".into(), json!(material));
-    if e.shear == ShearMethod::Hutchinson {
+    if !e.shear_effects {
+        m.insert("shear_effects".into(), json!(false));
+    } else if e.shear == ShearMethod::Hutchinson {
         m.insert("shear_factor".into(), json!(1.0 / hutchinson_kappa(e)));
+    }
+    for (key, on) in [
+        ("rotary_inertia", e.rotary_inertia),
+        ("gyroscopic", e.gyroscopic),
+    ] {
+        if !on {
+            m.insert(key.into(), json!(false));
+        }
     }
     if e.axial_force != 0.0 {
         m.insert("axial_force".into(), json!(e.axial_force));
@@ -462,8 +470,8 @@ fn support(b: &Bearing, ross: bool, warnings: &mut Vec<String>) -> (Value, bool)
         s.insert("n_link".into(), json!(l));
     }
     let constant = |v: &[f64]| v.iter().all(|x| *x == v[0]);
-    let tabulated = b.speeds.is_some() && b.values[..12].iter().any(|v| !constant(v));
-    for (name, v) in COEFFICIENTS[..12].iter().zip(&b.values) {
+    let tabulated = b.speeds.is_some() && b.values[..14].iter().any(|v| !constant(v));
+    for (name, v) in COEFFICIENTS[..14].iter().zip(&b.values) {
         // kxx, kyy, cxx, cyy always (Whirl's kyy and cyy default to kxx and cxx, not ROSS's
         // values); the others when not 0.
         let always = matches!(*name, "kxx" | "kyy" | "cxx" | "cyy");
@@ -482,15 +490,15 @@ fn support(b: &Bearing, ross: bool, warnings: &mut Vec<String>) -> (Value, bool)
             s.insert("interpolation".into(), json!("ross"));
         }
     }
-    let axial: Vec<&str> = COEFFICIENTS[12..]
+    let axial: Vec<&str> = COEFFICIENTS[14..]
         .iter()
-        .zip(&b.values[12..])
+        .zip(&b.values[14..])
         .filter(|(_, v)| v.iter().any(|x| *x != 0.0))
         .map(|(n, _)| *n)
         .collect();
     if !axial.is_empty() {
         warnings.push(format!(
-            "{}: {} (axial) dropped with the axial degrees of freedom",
+            "{}: {} (an axial mass coefficient) has no place in a Whirl support: dropped",
             b.table,
             axial.join(", ")
         ));
@@ -550,45 +558,5 @@ impl Materials {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn element(shear: ShearMethod) -> ShaftElement {
-        let (e, g) = (211e9, 81.2e9);
-        ShaftElement {
-            table: "ShaftElement_0".into(),
-            line: 1,
-            n: 0,
-            length: 0.1,
-            idl: 0.02,
-            odl: 0.07,
-            idr: 0.03,
-            odr: 0.05,
-            material: Material {
-                name: "Steel".into(),
-                density: 7810.0,
-                young_modulus: e,
-                poisson_ratio: e / (2.0 * g) - 1.0,
-            },
-            axial_force: 0.0,
-            torque: 0.0,
-            alpha: 0.0,
-            beta: 0.0,
-            shear,
-        }
-    }
-
-    #[test]
-    fn hutchinsons_kappa_is_rosss() {
-        // ROSS 2.3.0: ShaftElement(L=0.1, idl=0.02, odl=0.07, idr=0.03, odr=0.05,
-        // material=Material(E=211e9, G_s=81.2e9), shear_method_calc="hutchinson").kappa
-        let kappa = hutchinson_kappa(&element(ShearMethod::Hutchinson));
-        assert!((kappa - 0.5388931804974394).abs() < 1e-15, "{kappa}");
-        let seg = element_fields(&element(ShearMethod::Hutchinson), "Steel");
-        assert_eq!(seg["shear_factor"], json!(1.0 / kappa));
-        // Cowper's is Whirl's default for the mean diameters: no shear_factor.
-        assert!(
-            !element_fields(&element(ShearMethod::Cowper), "Steel").contains_key("shear_factor")
-        );
-    }
-}
+#[path = "convert_tests.rs"]
+mod tests;

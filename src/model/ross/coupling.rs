@@ -2,8 +2,8 @@
 //! `n + 1` (`model::coupling`), its lateral part. Whirl's coupling is isotropic (a rotating
 //! element stiffer in one direction turns that direction with it, which no time-invariant model
 //! holds), so `kt_x = kt_y`, `kr_x = kr_y`, `ct_x = ct_y` and `cr_x = cr_y` are required; the
-//! axial and torsional terms (`kt_z`, `kr_z`, `ct_z`, `cr_z`) go with ROSS's axial and
-//! torsional degrees of freedom.
+//! axial and torsional terms (`kt_z`, `kr_z`, `ct_z`, `cr_z`) are its axial and torsional
+//! stiffness and damping.
 
 use super::*;
 use crate::model::api::CouplingInput;
@@ -95,6 +95,8 @@ pub(super) fn coupling(r: &mut Reader, tab: &Tab) -> Option<Coupling> {
     let kr = same(r, "kr_x", "kr_y");
     let ct = same(r, "ct_x", "ct_y");
     let cr = same(r, "cr_x", "cr_y");
+    let mut z = |key: &str| r.number(tab, key, Some(0.0));
+    let (kz, kaz, cz, caz) = (z("kr_z"), z("kt_z"), z("cr_z"), z("ct_z"));
     let pair = |v: [Option<f64>; 2]| Some([v[0]?, v[1]?]);
     let (ip, id) = (pair(ip)?, pair(id)?);
     Some(Coupling {
@@ -114,6 +116,10 @@ pub(super) fn coupling(r: &mut Reader, tab: &Tab) -> Option<Coupling> {
             transverse_inertia: Some(
                 [0, 1].map(|k| if id[k] != 0.0 { id[k] } else { ip[k] / 2.0 }),
             ),
+            torsional_stiffness: kz?,
+            torsional_damping: cz?,
+            axial_stiffness: kaz?,
+            axial_damping: caz?,
         },
     })
     .filter(|_| ok)

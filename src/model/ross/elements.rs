@@ -16,27 +16,7 @@ pub(super) fn shaft_element(r: &mut Reader, tab: &Tab) -> Option<ShaftElement> {
     let alpha = r.number(tab, "alpha", Some(0.0));
     let beta = r.number(tab, "beta", Some(0.0));
     let material = shaft_material(r, tab);
-    for (key, what) in [
-        (
-            "shear_effects",
-            "an element without shear deformation (Euler-Bernoulli) cannot be represented: \
-             Whirl's elements are Timoshenko's",
-        ),
-        (
-            "rotary_inertia",
-            "an element without rotary inertia cannot be represented: Whirl's elements have it",
-        ),
-        (
-            "gyroscopic",
-            "an element without gyroscopic moments cannot be represented: Whirl's elements \
-             have them",
-        ),
-    ] {
-        if r.flag(tab, key, true) == Some(false) {
-            let line = tab.get(key).map_or(tab.line, |v| r.line(v.span()));
-            r.push(tab, Some(key), line, format!("is false: {what}"));
-        }
-    }
+    let flags = ["shear_effects", "rotary_inertia", "gyroscopic"].map(|k| r.flag(tab, k, true));
     let shear = match r.string(tab, "shear_method_calc")? {
         None => Some(ShearMethod::Cowper),
         Some(s) if s == "cowper" => Some(ShearMethod::Cowper),
@@ -114,6 +94,9 @@ pub(super) fn shaft_element(r: &mut Reader, tab: &Tab) -> Option<ShaftElement> {
         alpha: alpha?,
         beta: beta?,
         shear: shear?,
+        shear_effects: flags[0]?,
+        rotary_inertia: flags[1]?,
+        gyroscopic: flags[2]?,
     })
     .filter(|_| ok)
 }

@@ -41,7 +41,7 @@ pub struct ConvertRossResponse {
     #[schema(value_type = super::api::RotorInput)]
     pub rotor: serde_json::Value,
     /// What the conversion changed or left out, and how the rotor reads where that matters
-    /// (dropped axial and torsional degrees of freedom, damping frames, interpolation).
+    /// (damping frames, interpolation, what has no place).
     pub warnings: Vec<String>,
 }
 
@@ -105,6 +105,9 @@ pub struct ShaftElement {
     pub alpha: f64,
     pub beta: f64,
     pub shear: ShearMethod,
+    pub shear_effects: bool,
+    pub rotary_inertia: bool,
+    pub gyroscopic: bool,
 }
 
 /// ROSS's `DiskElement`.

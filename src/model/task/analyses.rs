@@ -13,8 +13,14 @@ impl ModalRequest {
             .and_then(|f| typed_speed(&mut bad, "max_frequency", f, positive));
         // Only a bounded modal analysis holds a large rotor sparse: every pole of it is not
         // asked for.
-        let (model, sparse) =
-            Model::parse_held(bound.is_some(), &self.rotor, &self.damping, limits, bad)?;
+        let (model, sparse) = Model::parse_held(
+            bound.is_some(),
+            self.motion,
+            &self.rotor,
+            &self.damping,
+            limits,
+            bad,
+        )?;
         let size = model.size();
         let n = size.dofs as u64;
         let cost = match sparse {
@@ -71,7 +77,8 @@ impl SweepRequest {
             bad.push("modes", format!("must be an integer >= 1 (got {m})"));
         }
         let grid = speeds(&self.speeds, limits, &mut bad);
-        let (model, sparse) = Model::parse_held(hold, &self.rotor, &self.damping, limits, bad)?;
+        let (model, sparse) =
+            Model::parse_held(hold, self.motion, &self.rotor, &self.damping, limits, bad)?;
         Ok((model, grid.expect("validated"), sparse))
     }
 
@@ -110,6 +117,7 @@ impl SweepRequest {
         };
         let bounded = self.max_frequency.is_none() && modes.is_none();
         let (lo, hi) = speeds.range();
+        let interference = self.interference_spec(&model, &speeds)?;
         let task = Task {
             output_unit: self.output_unit.unwrap_or_default(),
             warnings: model.warnings(lo, hi),
@@ -118,9 +126,11 @@ impl SweepRequest {
                 speeds,
                 max_frequency: self.max_frequency.map_or(f64::INFINITY, SpeedInput::rad_s),
                 modes,
-                reduce: self.modal_reduction.unwrap_or(true),
+                // A train's torsional or axial system is small, and may turn freely.
+                reduce: self.modal_reduction.unwrap_or(true) && interference.is_none(),
                 sparse,
                 max_states: sparse_states(limits),
+                interference,
             }),
             cost,
         };
@@ -129,6 +139,76 @@ impl SweepRequest {
         } else {
             Ok(task)
         }
+    }
+
+    /// The interference diagram of a torsional or axial sweep (none for a lateral one, which
+    /// refuses `interference`).
+    fn interference_spec(
+        &self,
+        model: &Model,
+        speeds: &SpeedGrid,
+    ) -> Result<Option<crate::model::train::Spec>, Invalid> {
+        use crate::model::train::{Line, Spec};
+        let crate::model::rotor::Rotor::Train(train) = &model.rotor else {
+            return match self.interference {
+                Some(_) => Err(Invalid::one(
+                    "interference",
+                    "the interference diagram is a torsional or axial analysis's: ask for \
+                     `motion: torsional` (or `axial`)",
+                )),
+                None => Ok(None),
+            };
+        };
+        let mut bad = Invalid::default();
+        let input = self.interference.clone().unwrap_or_default();
+        let orders = input.orders.clone().unwrap_or_else(|| vec![1.0, 2.0]);
+        if orders.is_empty() || orders.len() > 16 {
+            bad.push("interference.orders", "give 1 to 16 orders");
+        }
+        let mut lines = vec![];
+        for (i, &k) in orders.iter().enumerate() {
+            if let Some(k) = bad.check(&format!("interference.orders[{i}]"), positive(k)) {
+                for ratio in train.shaft_ratios() {
+                    lines.push(Line::Order { order: k, ratio });
+                }
+            }
+        }
+        if let Some(f) = input.line_frequency
+            && let Some(f) = typed_speed(&mut bad, "interference.line_frequency", f, positive)
+        {
+            for multiple in [1.0, 2.0] {
+                lines.push(Line::Fixed {
+                    multiple,
+                    frequency: multiple * f,
+                });
+            }
+        }
+        let unit = self.speeds.unit();
+        let smallest = speeds
+            .as_slice()
+            .iter()
+            .copied()
+            .find(|&w| w > 0.0)
+            .unwrap_or(f64::NAN);
+        let range = match input.operating_range {
+            Some([a, b]) if a.is_finite() && b.is_finite() && a > 0.0 && b >= a => {
+                Some([unit.to_rad_s(a), unit.to_rad_s(b)])
+            }
+            Some(r) => {
+                bad.push(
+                    "interference.operating_range",
+                    format!("must be [min, max] with 0 < min <= max (got {r:?})"),
+                );
+                None
+            }
+            None => Some([smallest, speeds.range().1]),
+        };
+        bad.into_result(|| {
+            Some(Spec {
+                lines,
+                range: range.expect("validated"),
+            })
+        })
     }
 
     /// `POST /v1/stability`.

@@ -6,8 +6,8 @@ use super::{CriticalMapTask, FrequencyTask, Level1Task, StaticTask};
 use super::{Model, Task, TaskKind, sparse_harmonic_cost, sparse_sweep_cost, speed_at, sweep_cost};
 use crate::linalg::sparse::DENSE_UP_TO;
 use crate::model::api::{
-    CriticalSpeedMapRequest, FrequencyResponseRequest, Level1Request, RotorInput, SpeedsInput,
-    StaticRequest, StaticSupports,
+    CriticalSpeedMapRequest, FrequencyResponseRequest, Level1Request, Motion, RotorInput,
+    SpeedsInput, StaticRequest, StaticSupports,
 };
 use crate::model::error::{Invalid, finite, positive};
 use crate::model::limits::{
@@ -359,7 +359,14 @@ impl Level1Request {
         };
         // Held sparse, Level I runs on a checked reduction only.
         let reduce = self.modal_reduction.unwrap_or(true);
-        let (model, sparse) = Model::parse_held(reduce, &self.rotor, &self.damping, limits, bad)?;
+        let (model, sparse) = Model::parse_held(
+            reduce,
+            Motion::Lateral,
+            &self.rotor,
+            &self.damping,
+            limits,
+            bad,
+        )?;
         let mut bad = Invalid::default();
         let (at, qa) = placing(self, model.rotor.node_count(), speed, &mut bad);
         let density = match self.machine.as_ref().and_then(|m| m.mean_gas_density) {
@@ -450,6 +457,12 @@ impl FrequencyResponseRequest {
         let mut bad = Invalid::default();
         let speed = speed_at(&mut bad, "speed", self.speed);
         let exc = excitation(&self.input.direction, &mut bad);
+        if !self.motion.is_lateral() && !matches!(exc, None | Some(Excitation::Direction(0.0))) {
+            bad.push(
+                "input.direction",
+                "a torsional or axial load acts along the axis: it has no direction",
+            );
+        }
         // One frequency is a valid question here (a sweep needs two speeds).
         let unit = self.frequencies.unit();
         let freqs = match self.frequencies.list() {
@@ -479,7 +492,8 @@ impl FrequencyResponseRequest {
                 "must be > 0 (the response to a static load is /v1/static)",
             );
         }
-        let (model, sparse) = Model::parse_held(true, &self.rotor, &self.damping, limits, bad)?;
+        let (model, sparse) =
+            Model::parse_held(true, self.motion, &self.rotor, &self.damping, limits, bad)?;
         let mut bad = Invalid::default();
         let nodes = model.rotor.node_count();
         let input = node_index(&mut bad, "input.node".into(), self.input.node, nodes);

@@ -13,11 +13,19 @@ impl Model {
     /// limits. `(model, held sparse)`.
     pub fn parse_held(
         allow: bool,
+        motion: Motion,
         rotor: &RotorInput,
         damping: &DampingInput,
         limits: &Limits,
         bad: Invalid,
     ) -> Result<(Self, bool), Invalid> {
+        if !motion.is_lateral() {
+            // A train's torsional or axial system: one coordinate per node, never held sparse.
+            return Ok((
+                Model::parse_motion(rotor, damping, motion, limits, bad)?,
+                false,
+            ));
+        }
         if allow {
             let relaxed = Limits {
                 max_states: usize::MAX,

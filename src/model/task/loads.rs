@@ -84,7 +84,8 @@ impl TimeResponseRequest {
         };
         // Held sparse, a rotor is integrated on a checked reduction only.
         let reduce = self.modal_reduction.unwrap_or(true);
-        let (model, sparse) = Model::parse_held(reduce, &self.rotor, &self.damping, limits, bad)?;
+        let (model, sparse) =
+            Model::parse_held(reduce, self.motion, &self.rotor, &self.damping, limits, bad)?;
         let mut bad = Invalid::default();
         let nodes = model.rotor.node_count();
         let node = |bad: &mut Invalid, at: String, k: i64| node_index(bad, at, k, nodes);
@@ -114,6 +115,13 @@ impl TimeResponseRequest {
             let at = format!("forces[{i}]");
             let n = node(&mut bad, format!("{at}.node"), f.node);
             let dir = bad.check(&format!("{at}.direction"), finite(f.direction));
+            if !self.motion.is_lateral() && f.direction != 0.0 {
+                bad.push(
+                    format!("{at}.direction"),
+                    "a torsional or axial load acts along the axis: it has no direction (give \
+                     its sign in `history`)",
+                );
+            }
             let h = Pwl::parse(&f.history, &format!("{at}.history"), true, &mut bad);
             if let (Some(node), Some(direction), Some(history)) = (n, dir, h) {
                 forces.push(Force {
@@ -122,6 +130,13 @@ impl TimeResponseRequest {
                     history,
                 });
             }
+        }
+        if !self.motion.is_lateral() && !self.unbalances.is_empty() {
+            bad.push(
+                "unbalances",
+                "an unbalance excites lateral motion only: give torsional or axial loads as \
+                 `forces` (torques in N m for torsion)",
+            );
         }
         let mut unbalances = vec![];
         for (i, u) in self.unbalances.iter().enumerate() {
@@ -228,7 +243,14 @@ impl UnbalanceResponseRequest {
         if self.unbalances.is_empty() {
             bad.push("unbalances", "needs at least one unbalance");
         }
-        let (model, sparse) = Model::parse_held(true, &self.rotor, &self.damping, limits, bad)?;
+        let (model, sparse) = Model::parse_held(
+            true,
+            Motion::Lateral,
+            &self.rotor,
+            &self.damping,
+            limits,
+            bad,
+        )?;
         let mut bad = Invalid::default();
         let nodes = model.rotor.node_count();
         let mut unbalances = vec![];

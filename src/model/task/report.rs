@@ -185,6 +185,8 @@ impl ReportRequest {
                 modes: None,
                 modal_reduction: None,
                 output_unit: None,
+                motion: Default::default(),
+                interference: None,
             }
             .parse_campbell(limits)
         };
