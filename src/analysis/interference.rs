@@ -33,13 +33,16 @@ pub const RIGID: f64 = 1e-6;
 /// Keeps one branch per mode (those of positive frequency; the conjugates are the same
 /// motion) and none for a free train's rigid motion, with the 1x criticals and hand-overs
 /// that concern them; the threshold is then that of the branches kept.
-pub fn real_modes(r: &mut CampbellResult) {
+///
+/// `scale`: a lower bound of the system's highest natural frequency
+/// (`fem::modal::frequency_scale`); `modes`: how many modes to keep, the lowest.
+pub fn real_modes(r: &mut CampbellResult, scale: f64, modes: Option<usize>) {
     let largest = r
         .branches
         .iter()
         .flat_map(|b| b.poles.iter().flatten())
         .map(|s| s.norm())
-        .fold(0.0, f64::max);
+        .fold(scale, f64::max);
     let rigid = |b: &super::campbell::Branch| {
         b.poles
             .iter()
@@ -60,11 +63,12 @@ pub fn real_modes(r: &mut CampbellResult) {
     let mut index = vec![None; keep.len()];
     let mut next = 0;
     for (i, &k) in keep.iter().enumerate() {
-        if k {
+        if k && modes.is_none_or(|m| next < m) {
             index[i] = Some(next);
             next += 1;
         }
     }
+    let keep: Vec<bool> = index.iter().map(Option::is_some).collect();
     let mut i = 0;
     r.branches.retain(|_| {
         i += 1;
@@ -114,7 +118,9 @@ fn first_growing(r: &CampbellResult) -> Option<super::stability::Threshold> {
             .zip(&b.poles)
             .filter_map(|(&w, p)| p.map(|p| (w, p)))
             .collect();
-        let Some(i) = pts.iter().position(|(_, s)| s.re > 0.0) else {
+        // The stability analysis's margin: round-off on an undamped pole is not growth.
+        let grows = |s: &c64| s.re - super::stability::TOLERANCE * s.norm() > 0.0;
+        let Some(i) = pts.iter().position(|(_, s)| grows(s)) else {
             continue;
         };
         let at = match i {

@@ -54,7 +54,9 @@ impl Output {
                             let size = p.decay_rate.abs() + p.frequency.abs();
                             p.frequency >= -1e-9 * size || p.whirl == api::Whirl::Internal
                         });
-                        rigid_motion(&mut m.poles);
+                        let scale = crate::system::RotorSystem::assemble(&model.rotor)
+                            .map_or(0.0, |s| crate::fem::modal::frequency_scale(&s));
+                        rigid_motion(&mut m.poles, scale);
                         m.shaft = None;
                     }
                 }
@@ -240,10 +242,10 @@ fn report_of(
 
 /// A free train's rigid turning (or sliding) is a double pole at 0, which the eigensolver
 /// returns as `sqrt(eps)`-sized round-off: reported once, exactly 0.
-fn rigid_motion(poles: &mut Vec<api::Pole>) {
+fn rigid_motion(poles: &mut Vec<api::Pole>, scale: f64) {
     use crate::analysis::interference::RIGID;
     let size = |p: &api::Pole| p.decay_rate.hypot(p.frequency);
-    let largest = poles.iter().map(size).fold(0.0, f64::max);
+    let largest = poles.iter().map(size).fold(scale, f64::max);
     let rigid = |p: &api::Pole| p.whirl != api::Whirl::Internal && size(p) <= RIGID * largest;
     let Some(first) = poles.iter().position(rigid) else {
         return;

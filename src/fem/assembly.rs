@@ -342,13 +342,7 @@ pub fn matrices(m: &MatrixRotor) -> RotorSystem {
         supports: m
             .general_supports
             .iter()
-            .map(|g| PlacedSupport {
-                at: match g.link {
-                    None => Placement::Dof(g.node),
-                    Some(l) => Placement::Between(g.node, l),
-                },
-                support: g.clone(),
-            })
+            .map(PlacedSupport::on_nodes)
             .collect(),
     }
 }

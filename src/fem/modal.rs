@@ -224,6 +224,18 @@ impl ModalBasis {
     }
 }
 
+/// `sqrt(max K_ii / M_ii)` of [`pencil`], rad/s: a lower bound of the highest natural
+/// frequency, the scale of the round-off an eigensolver leaves on a pole at 0 (about
+/// `sqrt(eps)` times the highest frequency).
+pub fn frequency_scale(system: &RotorSystem) -> f64 {
+    let (k, m) = pencil(system);
+    (0..system.n())
+        .filter(|&i| m.get(i, i) > 0.0)
+        .map(|i| k.get(i, i) / m.get(i, i))
+        .fold(0.0, f64::max)
+        .sqrt()
+}
+
 /// A rigid-body mode has `w^2 ~ 0` relative to the largest; equivalent and nonviscous damping
 /// divide by `w`, so it is refused here rather than turned into infinities.
 fn supported(omega_squared: &[f64]) -> Result<(), ModalError> {

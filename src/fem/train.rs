@@ -24,7 +24,7 @@
 use crate::linalg::Sparse;
 use crate::model::api::Motion;
 use crate::model::rotor::{Element, ShaftElement, TrainRotor};
-use crate::system::{Dof, DofKind, PlacedSupport, Placement, RotorSystem};
+use crate::system::{Dof, DofKind, PlacedSupport, RotorSystem};
 
 type Triplets = Vec<(usize, usize, f64)>;
 
@@ -127,13 +127,7 @@ pub fn assemble(t: &TrainRotor) -> RotorSystem {
         supports: t
             .axial_supports
             .iter()
-            .map(|g| PlacedSupport {
-                at: match g.link {
-                    None => Placement::Dof(g.node),
-                    Some(l) => Placement::Between(g.node, l),
-                },
-                support: g.clone(),
-            })
+            .map(PlacedSupport::on_nodes)
             .collect(),
     }
 }

@@ -49,29 +49,13 @@ impl Coupling {
         at: &str,
         bad: &mut Invalid,
     ) -> Option<Self> {
-        let shaft_only: [(&str, bool); 12] = [
-            ("shear_effects", seg.shear_effects.is_some()),
-            ("rotary_inertia", seg.rotary_inertia.is_some()),
-            ("gyroscopic", seg.gyroscopic.is_some()),
-            ("material", !seg.material.is_empty()),
-            ("inner_diameter", seg.inner_diameter != 0.0),
-            ("elements", seg.elements.is_some_and(|n| n != 1)),
-            ("shear_factor", seg.shear_factor.is_some()),
-            ("outer_diameter_right", seg.outer_diameter_right.is_some()),
-            ("inner_diameter_right", seg.inner_diameter_right.is_some()),
-            ("axial_force", seg.axial_force.is_some()),
-            ("torque", seg.torque.is_some()),
-            ("rayleigh_damping", seg.rayleigh_damping.is_some()),
-        ];
-        for (field, given) in shaft_only {
-            if given {
-                bad.push(
-                    format!("{at}.{field}"),
-                    "a coupling is one element without a section: give it `length`, \
-                     `outer_diameter` (drawn) and `coupling` only",
-                );
-            }
-        }
+        refuse_section(
+            seg,
+            at,
+            "a coupling is one element without a section: give it `length`, `outer_diameter` \
+             (drawn) and `coupling` only",
+            bad,
+        );
         let length = bad.check(&format!("{at}.length"), positive(seg.length));
         let outer = bad.check(
             &format!("{at}.outer_diameter"),
@@ -115,5 +99,29 @@ impl Coupling {
             axial_stiffness: ka?,
             axial_damping: ca?,
         })
+    }
+}
+
+/// Refuses, with `message`, the fields a shaft segment has and an element without a section (a
+/// coupling, a gear mesh) does not.
+pub fn refuse_section(seg: &SegmentInput, at: &str, message: &str, bad: &mut Invalid) {
+    let shaft_only: [(&str, bool); 12] = [
+        ("shear_effects", seg.shear_effects.is_some()),
+        ("rotary_inertia", seg.rotary_inertia.is_some()),
+        ("gyroscopic", seg.gyroscopic.is_some()),
+        ("material", !seg.material.is_empty()),
+        ("inner_diameter", seg.inner_diameter != 0.0),
+        ("elements", seg.elements.is_some_and(|n| n != 1)),
+        ("shear_factor", seg.shear_factor.is_some()),
+        ("outer_diameter_right", seg.outer_diameter_right.is_some()),
+        ("inner_diameter_right", seg.inner_diameter_right.is_some()),
+        ("axial_force", seg.axial_force.is_some()),
+        ("torque", seg.torque.is_some()),
+        ("rayleigh_damping", seg.rayleigh_damping.is_some()),
+    ];
+    for (field, given) in shaft_only {
+        if given {
+            bad.push(format!("{at}.{field}"), message);
+        }
     }
 }

@@ -20,29 +20,13 @@ pub struct Gear {
 impl Gear {
     /// The gear of segment `seg` at `at` (`rotor.shaft[i]`).
     pub fn parse(seg: &SegmentInput, g: &GearInput, at: &str, bad: &mut Invalid) -> Option<Self> {
-        let shaft_only = [
-            ("material", !seg.material.is_empty()),
-            ("inner_diameter", seg.inner_diameter != 0.0),
-            ("elements", seg.elements.is_some_and(|n| n != 1)),
-            ("shear_factor", seg.shear_factor.is_some()),
-            ("outer_diameter_right", seg.outer_diameter_right.is_some()),
-            ("inner_diameter_right", seg.inner_diameter_right.is_some()),
-            ("axial_force", seg.axial_force.is_some()),
-            ("torque", seg.torque.is_some()),
-            ("rayleigh_damping", seg.rayleigh_damping.is_some()),
-            ("shear_effects", seg.shear_effects.is_some()),
-            ("rotary_inertia", seg.rotary_inertia.is_some()),
-            ("gyroscopic", seg.gyroscopic.is_some()),
-        ];
-        for (field, given) in shaft_only {
-            if given {
-                bad.push(
-                    format!("{at}.{field}"),
-                    "a gear mesh is one element without a section: give it `length`, \
-                     `outer_diameter` (drawn) and `gear` only (each gear's inertia a disk)",
-                );
-            }
-        }
+        super::coupling::refuse_section(
+            seg,
+            at,
+            "a gear mesh is one element without a section: give it `length`, `outer_diameter` \
+             (drawn) and `gear` only (each gear's inertia a disk)",
+            bad,
+        );
         let length = bad.check(&format!("{at}.length"), positive(seg.length));
         let outer = bad.check(
             &format!("{at}.outer_diameter"),

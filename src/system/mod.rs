@@ -93,6 +93,19 @@ pub enum Placement {
     Shape(Vec<f64>),
 }
 
+impl PlacedSupport {
+    /// A general support on the coordinates numbered as its nodes (a matrix rotor's, a train's).
+    pub fn on_nodes(g: &GeneralSupport) -> Self {
+        PlacedSupport {
+            at: match g.link {
+                None => Placement::Dof(g.node),
+                Some(l) => Placement::Between(g.node, l),
+            },
+            support: g.clone(),
+        }
+    }
+}
+
 impl Placement {
     /// `(coordinate, weight)` pairs whose sum is the support's translation.
     pub fn weights(&self) -> Vec<(usize, f64)> {

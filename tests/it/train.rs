@@ -176,6 +176,28 @@ async fn opposed_step_torques_twist_the_train_as_the_closed_form_says() {
     );
 }
 
+/// An undamped free train: no threshold (neither the rigid turning's round-off nor the twisting
+/// mode's is growth), one branch per mode, `modes` counting modes.
+#[tokio::test]
+async fn a_free_undamped_train_is_stable_with_one_branch_per_mode() {
+    for modes in [None, Some(1)] {
+        let mut body = json!({"rotor": two_inertia(0.0, 0.0), "damping": {"model": "viscous"},
+               "motion": "torsional", "speeds": {"start": 0, "stop": 400, "count": 5}});
+        if let Some(m) = modes {
+            body["modes"] = json!(m);
+        }
+        let v = ok("/v1/campbell", body).await;
+        assert_eq!(v["threshold"], Value::Null, "{v}");
+        let branches = v["branches"].as_array().unwrap();
+        assert_eq!(branches.len(), 1, "{v}");
+        assert_eq!(branches[0]["mode"], 1);
+        let w = two_inertia_omega();
+        for f in branches[0]["frequency"].as_array().unwrap() {
+            assert!((f.as_f64().unwrap() - w).abs() <= 1e-9 * w);
+        }
+    }
+}
+
 /// The interference diagram's crossings of order `k` sit at `w_n / k` (the natural frequency
 /// does not move with speed in torsion), refined to 1e-9.
 #[tokio::test]

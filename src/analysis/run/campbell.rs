@@ -112,9 +112,10 @@ fn train(
     let model = &task.model;
     let speeds = task.speeds.as_slice();
     let system = assemble(model)?;
+    // Each mode is a conjugate pair, and a free train's rigid motion one more.
     let keep = campbell::Keep {
         below: task.max_frequency,
-        lowest: task.modes,
+        lowest: task.modes.map(|m| 2 * m + 2),
     };
     let (mut r, damped) = if system.frequency_dependent() {
         let r = campbell_whirl::campbell_consistent(
@@ -141,7 +142,8 @@ fn train(
         )?;
         (r, Some(damped))
     };
-    interference::real_modes(&mut r);
+    let scale = crate::fem::modal::frequency_scale(&system);
+    interference::real_modes(&mut r, scale, task.modes);
     r.interference = Some(interference::interference(
         &r,
         damped.as_ref(),
