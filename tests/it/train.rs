@@ -198,6 +198,82 @@ async fn a_free_undamped_train_is_stable_with_one_branch_per_mode() {
     }
 }
 
+/// Opposed harmonic torques `+-T sin(w t)` on the two disks (the train does not turn as a whole)
+/// through a damped coupling: once the start has died away, the twist at disk 1 is the
+/// frequency response's `(H_00 - H_01) T`. The torques are tabulated every 0.1 ms, whose
+/// piecewise-linear error is `(w dt)^2 / 8 = 5e-5` of `T`: the tolerance is 2e-4.
+#[tokio::test]
+async fn a_harmonic_torques_steady_state_is_the_frequency_response() {
+    let (t, w, dt) = (100.0, 200.0_f64, 1e-4);
+    let rotor = two_inertia(0.0, 60.0);
+    let n = (0.7 / dt) as usize;
+    let sine = |sign: f64| -> Vec<[f64; 2]> {
+        (0..=n)
+            .map(|i| {
+                let time = i as f64 * dt;
+                [time, sign * t * (w * time).sin()]
+            })
+            .collect()
+    };
+    let v = ok(
+        "/v1/time-response",
+        json!({"rotor": rotor, "damping": {"model": "viscous"}, "motion": "torsional",
+               "speed": 0, "forces": [{"node": 0, "history": sine(1.0)},
+                                      {"node": 1, "history": sine(-1.0)}],
+               "duration": 0.7, "output_interval": 2e-4, "tolerance": 1e-10, "nodes": [0]}),
+    )
+    .await;
+    // The start decays at 25 1/s; the last 0.1 s (about 3 periods) fitted by a cos + b sin.
+    let times: Vec<f64> = v["time"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    let x: Vec<f64> = v["nodes"][0]["x"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    let (mut cc, mut ss, mut cs, mut xc, mut xs) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    for (time, x) in times.iter().zip(&x).filter(|(time, _)| **time >= 0.6) {
+        let (c, s) = ((w * time).cos(), (w * time).sin());
+        cc += c * c;
+        ss += s * s;
+        cs += c * s;
+        xc += x * c;
+        xs += x * s;
+    }
+    let det = cc * ss - cs * cs;
+    let (a, b) = ((xc * ss - xs * cs) / det, (xs * cc - xc * cs) / det);
+    let got = a.hypot(b);
+    let h = |input: usize| async move {
+        ok(
+            "/v1/frequency-response",
+            json!({"rotor": two_inertia(0.0, 60.0), "damping": {"model": "viscous"},
+                   "motion": "torsional", "input": {"node": input}, "output": {"node": 0},
+                   "frequencies": {"values": [w], "unit": "rad/s"}}),
+        )
+        .await
+    };
+    let (h0, h1) = (h(0).await, h(1).await);
+    let c = |v: &Value| {
+        let (a, p) = (
+            v["amplitude"][0].as_f64().unwrap(),
+            v["phase"][0].as_f64().unwrap(),
+        );
+        (a * p.cos(), a * p.sin())
+    };
+    let ((r0, i0), (r1, i1)) = (c(&h0), c(&h1));
+    let want = t * (r0 - r1).hypot(i0 - i1);
+    println!("steady twist {got:.6e}, frequency response {want:.6e}");
+    assert!(
+        (got - want).abs() <= 2e-4 * want,
+        "steady twist {got:.6e} vs the frequency response's {want:.6e}"
+    );
+}
+
 /// The interference diagram's crossings of order `k` sit at `w_n / k` (the natural frequency
 /// does not move with speed in torsion), refined to 1e-9.
 #[tokio::test]
