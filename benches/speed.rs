@@ -234,6 +234,7 @@ fn main() {
         tolerance: 1e-6,
         max_steps: 5_000_000,
         reduce: false,
+        generated: Default::default(),
     };
     if wanted("c") {
         for guyan in [true, false] {

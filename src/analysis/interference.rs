@@ -228,13 +228,19 @@ pub fn interference(
             }
             Line::Fixed { frequency: f, .. } => {
                 for b in &r.branches {
-                    // The worst speed of the operating range (the grid's points in it, and
-                    // the ends where the grid reaches them).
-                    let worst = speeds
+                    // The worst speed of the operating range: the grid's points in it and its
+                    // ends, interpolated between the grid's points either side (a range
+                    // between two points, or a single speed, has no point of its own).
+                    let inside = speeds
                         .iter()
                         .zip(&b.poles)
                         .filter(|(w, _)| **w >= lo * (1.0 - 1e-12) && **w <= hi * (1.0 + 1e-12))
-                        .filter_map(|(_, p)| *p)
+                        .filter_map(|(_, p)| *p);
+                    let ends = [lo, hi]
+                        .into_iter()
+                        .filter_map(|w| at_speed(speeds, &b.poles, w));
+                    let worst = inside
+                        .chain(ends)
                         .min_by(|a, b| (a.im.abs() - f).abs().total_cmp(&(b.im.abs() - f).abs()));
                     if let Some(p) = worst {
                         out.push(Crossing {
@@ -262,6 +268,17 @@ pub fn interference(
         spec: spec.clone(),
         crossings: out,
     })
+}
+
+/// A branch's pole at speed `w` inside the grid, linear between the grid's points either side.
+fn at_speed(speeds: &[f64], poles: &[Option<c64>], w: f64) -> Option<c64> {
+    let k = speeds.partition_point(|&s| s < w);
+    if k == 0 || k >= speeds.len() {
+        return (speeds.get(k) == Some(&w)).then_some(poles[k]).flatten();
+    }
+    let (a, b) = (poles[k - 1]?, poles[k]?);
+    let t = (w - speeds[k - 1]) / (speeds[k] - speeds[k - 1]);
+    Some(a + (b - a) * t)
 }
 
 /// Crossings interpolated linearly between the grid's points (a sweep without one model to

@@ -18,6 +18,7 @@ pub mod refine;
 pub mod response;
 pub mod roots;
 pub mod run;
+pub mod shaft_loads;
 pub mod stability;
 pub mod stability_large;
 pub mod time;

@@ -11,6 +11,7 @@ mod models;
 mod threshold;
 mod time;
 mod time_fit;
+mod time_train;
 
 use models::assemble;
 pub use models::build;
@@ -116,6 +117,8 @@ pub enum Outcome {
         reduction: Option<ResponseReduction>,
         /// Whether the full model was held sparse.
         sparse: bool,
+        /// A train's element loads per unit input.
+        elements: Vec<super::shaft_loads::ElementResponse>,
     },
     /// The report's parts, in the order of its plan: map, static, Campbell, unbalance, then
     /// per compared model its Campbell, Level I and unbalance; and its unbalance cases.

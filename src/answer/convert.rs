@@ -5,7 +5,6 @@ use crate::analysis::modal::ModalResult;
 use crate::analysis::poles;
 use crate::analysis::stability::Threshold;
 use crate::analysis::time::fit_poles::FitPoles;
-use crate::analysis::time::{Method, TimeResult};
 use crate::analysis::unbalance::Orbit;
 use crate::damping::StateModel;
 use crate::damping::report::{Augmented, Coordinate, DamperFit, ModelMatrices};
@@ -513,34 +512,6 @@ pub fn fit_poles(p: &FitPoles) -> api::FitPolesInfo {
         unstable: p.unstable.iter().map(|&s| value(s)).collect(),
         lost: p.lost,
         merged: p.merged,
-    }
-}
-
-pub fn time_response(r: &TimeResult) -> api::TimeResponseResponse {
-    api::TimeResponseResponse {
-        nondimensional: false,
-        warnings: vec![],
-        time: r.time.clone(),
-        nodes: r
-            .nodes
-            .iter()
-            .map(|(node, h)| api::NodeHistory {
-                node: *node,
-                x: h.iter().map(|z| z.re).collect(),
-                y: h.iter().map(|z| z.im).collect(),
-            })
-            .collect(),
-        method: match r.method {
-            Method::Exact => "exact",
-            Method::Implicit => "implicit",
-            Method::Exponential => "exponential",
-        }
-        .into(),
-        steps: r.steps,
-        states: r.states,
-        reduction: None,
-        support_fits: vec![],
-        fit_poles: vec![],
     }
 }
 

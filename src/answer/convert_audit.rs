@@ -206,6 +206,7 @@ pub fn frequency(
         y_phase: col(&|o| o.xy()[1].arg()),
         forward: col(&|o| o.a.norm()),
         backward: col(&|o| o.b.norm()),
+        elements: vec![],
         model: model.into(),
         reduction: None,
         full_model: Default::default(),
@@ -485,6 +486,10 @@ pub fn report(
             first_level1 = Some(l);
         }
     }
+    let torsion = match &plan.torsion {
+        Some(t) => Some(super::convert_torsion::section(&mut next, t, &mut checks)?),
+        None => None,
+    };
     let _ = lo;
     case_checks(
         &unbalance_cases,
@@ -493,6 +498,7 @@ pub fn report(
     );
     Ok(api::ReportResponse {
         bearing_sets: vec![],
+        torsion,
         unbalance_cases,
         vibration_limit: placement::vibration_limit(hi * RPM),
         provenance: Some(api::Provenance {

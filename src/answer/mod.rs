@@ -9,6 +9,8 @@
 
 pub mod convert;
 pub mod convert_audit;
+mod convert_time;
+mod convert_torsion;
 mod convert_train;
 pub mod error;
 mod output;
@@ -95,7 +97,10 @@ impl Output {
                 d
             })),
             Outcome::Time(r, reduction, fitted) => {
-                let mut t = convert::time_response(&r);
+                let mut t = convert_time::time_response(&r);
+                t.motion = task
+                    .model()
+                    .map_or(Default::default(), |m| m.rotor.motion());
                 t.reduction = reduction.as_ref().map(convert::reduction);
                 t.support_fits = fitted.fits.iter().map(convert::support_fit).collect();
                 t.fit_poles = fitted.poles.iter().map(convert::fit_poles).collect();
@@ -154,11 +159,16 @@ impl Output {
                 model,
                 reduction,
                 sparse,
+                elements,
             } => Output::Frequency({
                 let mut f =
                     convert_audit::frequency(speed, input, output, &frequencies, &response, model);
                 f.reduction = reduction.as_ref().map(convert::response_reduction);
                 f.full_model = convert::storage(sparse);
+                f.elements = elements
+                    .iter()
+                    .map(convert_time::element_response)
+                    .collect();
                 f
             }),
             Outcome::Report { parts, cases, sets } => {

@@ -71,7 +71,11 @@ impl Output {
             Output::Campbell(o) => o.warnings = w,
             Output::Stability(o) => o.warnings = w,
             Output::Damping(o) => o.warnings = w,
-            Output::Time(o) => o.warnings = w,
+            Output::Time(o) => {
+                let own = std::mem::take(&mut o.warnings);
+                o.warnings = w;
+                o.warnings.extend(own);
+            }
             Output::Unbalance(o) => o.warnings = w,
             Output::CriticalMap(o) => o.warnings = w,
             Output::Static(o) => o.warnings = w,

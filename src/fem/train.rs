@@ -172,3 +172,29 @@ pub fn element_loads(t: &TrainRotor) -> Vec<[(usize, f64); 2]> {
         })
         .collect()
 }
+
+/// Each element's stress per unit load at its more stressed end, its stress concentration
+/// included: torsion `T (D / 2) / J` with `J = pi (D^4 - d^4) / 32` (Pa per N m), axially
+/// `F / A` (Pa per N). `None` for a coupling or mesh, whose section is not a shaft's.
+pub fn stress_per_load(t: &TrainRotor) -> Vec<Option<f64>> {
+    let axial = t.motion == Motion::Axial;
+    t.beam
+        .elements()
+        .iter()
+        .enumerate()
+        .map(|(i, el)| {
+            let b = el.beam()?;
+            let end = |o: f64, d: f64| {
+                if axial {
+                    4.0 / (std::f64::consts::PI * (o * o - d * d))
+                } else {
+                    16.0 * o / (std::f64::consts::PI * (o.powi(4) - d.powi(4)))
+                }
+            };
+            let worst = end(b.outer_diameter, b.inner_diameter)
+                .max(end(b.outer_diameter_right, b.inner_diameter_right));
+            let scf = t.stress_concentration.get(i).copied().unwrap_or(1.0);
+            Some(scf * worst)
+        })
+        .collect()
+}

@@ -14,11 +14,13 @@ mod general;
 mod gram;
 pub mod lanczos;
 mod lstsq;
+mod phi;
 pub mod sparse;
 
 pub use general::{Eigen, balance, eigen, eigen_real, eigenvalues};
 pub use gram::m_orthonormal_extend;
 pub use lstsq::{bounded_least_squares, least_squares};
+pub use phi::{phi1, phi2};
 pub use sparse::Sparse;
 
 use faer::linalg::solvers::Solve;

@@ -17,6 +17,7 @@ pub mod loads;
 pub mod objects;
 pub mod pchip;
 pub mod point_masses;
+pub mod pwl;
 pub mod ross;
 pub mod rotor;
 pub mod shaft;
@@ -25,6 +26,7 @@ pub mod spline;
 pub mod supports;
 pub mod tagged;
 pub mod task;
+pub mod torque;
 pub mod train;
 
 pub use error::{FieldError, Invalid};

@@ -22,6 +22,8 @@ pub struct TrainRotor {
     /// The supports' axial coefficients (`kzz`, `czz`) as isotropic general supports on the
     /// axial coordinates (axial motion only; a support without them is not one axially).
     pub axial_supports: Vec<GeneralSupport>,
+    /// Each element's stress concentration factor (its segment's; 1 by default).
+    pub stress_concentration: Vec<f64>,
 }
 
 impl TrainRotor {
@@ -35,10 +37,12 @@ impl TrainRotor {
             Motion::Axial => axial_supports(&input.supports, nodes, &mut bad),
             _ => vec![],
         };
+        let stress_concentration = stress_concentration(input, &mut bad);
         bad.into_result(|| TrainRotor {
             motion,
             beam,
             axial_supports,
+            stress_concentration,
         })
     }
 
@@ -91,6 +95,24 @@ impl TrainRotor {
                 .iter()
                 .any(|s| s.loss_factor > 0.0 && s.at(0.0).k.xx > 0.0)
     }
+}
+
+/// Each element's segment's `stress_concentration` (>= 1, default 1).
+fn stress_concentration(input: &BeamInput, bad: &mut Invalid) -> Vec<f64> {
+    let mut out = vec![];
+    for (i, seg) in input.shaft.iter().enumerate() {
+        let scf = seg.stress_concentration.unwrap_or(1.0);
+        if !(scf.is_finite() && scf >= 1.0) {
+            bad.push(
+                format!("rotor.shaft[{i}].stress_concentration"),
+                format!("must be a factor >= 1 (got {scf})"),
+            );
+        }
+        let single = seg.coupling.is_some() || seg.gear.is_some();
+        let count = if single { 1 } else { seg.elements.unwrap_or(1) };
+        out.extend(std::iter::repeat_n(scf, count.max(0) as usize));
+    }
+    out
 }
 
 /// The supports' `kzz`, `czz` as isotropic general supports (`kxx = kyy = kzz`), their errors

@@ -11,6 +11,7 @@ mod campbell;
 mod interference;
 mod modes;
 mod response;
+mod shaft_loads;
 mod stability;
 mod study;
 pub mod svg;
@@ -115,4 +116,12 @@ pub(crate) fn unit_free(desc: &str) -> String {
         .replace("time [s]", "time t* = t·√(k/m)")
         .replace(" [rad/s]", " [–]")
         .replace(" [1/s]", " [–]")
+}
+
+/// At most this many points per line (evenly strided; more do not show at this size).
+const MAX_POINTS: usize = 6000;
+
+pub(crate) fn stride<T: Copy>(v: &[T]) -> impl Iterator<Item = T> + '_ {
+    let step = v.len().div_ceil(MAX_POINTS).max(1);
+    v.iter().copied().step_by(step)
 }

@@ -474,6 +474,7 @@ pub fn html(report: &ReportResponse, rotor: &RotorInput) -> Result<String, Err> 
     o.push_str("<p>The same margins under each damping model: hysteretic, equivalent viscous and nonviscous damping need not agree.</p>\n");
     models_table(&mut o, report, lo, hi);
     sets_section(&mut o, report, lo, hi);
+    torsion_section(&mut o, report)?;
 
     let mut warnings: Vec<&String> = vec![];
     let all = [
@@ -515,10 +516,12 @@ mod cases;
 mod models;
 mod sets;
 mod summary;
+mod torsion;
 use cases::cases_section;
 use models::models_table;
 use sets::sets_section;
 use summary::model_rows;
+use torsion::torsion_section;
 
 #[cfg(test)]
 mod tests {

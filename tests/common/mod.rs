@@ -319,6 +319,7 @@ pub fn shock_case(
         tolerance: 1e-6,
         max_steps: 500_000,
         reduce: true,
+        generated: Default::default(),
     };
     (system, spec)
 }
@@ -331,4 +332,19 @@ pub fn radial_peak(out: &serde_json::Value) -> f64 {
         .zip(&y)
         .map(|(a, b)| a.hypot(*b))
         .fold(0.0, f64::max)
+}
+
+/// The amplitude of `x(t) ~ a cos(w t) + b sin(w t)` fitted by least squares over `t >= from`.
+pub fn sine_amplitude(time: &[f64], x: &[f64], w: f64, from: f64) -> f64 {
+    let (mut cc, mut ss, mut cs, mut xc, mut xs) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    for (t, x) in time.iter().zip(x).filter(|(t, _)| **t >= from) {
+        let (c, s) = ((w * t).cos(), (w * t).sin());
+        cc += c * c;
+        ss += s * s;
+        cs += c * s;
+        xc += x * c;
+        xs += x * s;
+    }
+    let det = cc * ss - cs * cs;
+    ((xc * ss - xs * cs) / det).hypot((xs * cc - xc * cs) / det)
 }

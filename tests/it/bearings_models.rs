@@ -158,6 +158,7 @@ fn spec(
         tolerance: 1e-8,
         max_steps: 2_000_000,
         reduce: false,
+        generated: Default::default(),
     }
 }
 

@@ -101,6 +101,7 @@ fn spec(speed: SpeedLaw, unbalances: Vec<Unbalance>, forces: Vec<Force>, t: f64)
         tolerance: 1e-6,
         max_steps: 5_000_000,
         reduce: false,
+        generated: Default::default(),
     }
 }
 

@@ -545,6 +545,109 @@ async fn seal_over_frequency_run_up() {
     assert!(held_off <= 1e-4, "{held_off}");
 }
 
+/// docs/trains.md on the direct-drive train's report: "Its modes at 31.07 and 80.61 Hz lie 37.9%
+/// below the motor's 1x and 19.4% below 2x and 2 f_L; every check of the report passes".
+#[tokio::test]
+#[ignore = "heavy: a four-model report of a 20-element train (cargo test --release -- --ignored)"]
+async fn train_torsion_report() {
+    let r = run("train-torsion.report.json").await;
+    let checks = r["checks"].as_array().unwrap();
+    assert!(checks.iter().all(|c| c["passes"] == true), "{checks:?}");
+    let torsional: Vec<&Value> = checks
+        .iter()
+        .filter(|c| c["check"].as_str().unwrap().starts_with("torsional mode"))
+        .collect();
+    assert_eq!(torsional.len(), 2);
+    for (c, (f, sm)) in torsional.iter().zip([("31.07", "37.9"), ("80.61", "19.4")]) {
+        let text = c["check"].as_str().unwrap();
+        assert!(text.contains(&format!("({f} Hz)")), "{text}");
+        assert_eq!(c["value"], json!(format!("SM {sm} %")));
+    }
+    let i = &r["torsion"]["campbell"]["interference"];
+    let margins: Vec<f64> = i["criticals"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|k| k["mode"] == 2)
+        .map(|k| 100.0 * num(&k["margin"]))
+        .collect();
+    // 2x and 2 f_L are one frequency at the synchronous speed: both 19.4%.
+    assert_eq!(
+        margins.iter().filter(|m| (**m - 19.4).abs() < 0.05).count(),
+        2,
+        "{margins:?}"
+    );
+}
+
+/// docs/trains.md and the README on the motor-compressor train: "first torsional mode is 30.02
+/// Hz (log decrement 0.41), 20.1% above the motor's 1x ... 40.0% below the line frequency; the
+/// second, 291.05 Hz, is 81.9% above 2x of the pinion shaft"; its start-up "pulls into step at
+/// 2.23 s; ... (30.0 Hz, at 70% speed, 1.49 s), and the motor shaft's torque peaks at 1.45 s at
+/// 4600 N m (13.6 MPa), twice its steady 2370 N m".
+#[tokio::test]
+async fn motor_compressor_train() {
+    let v = run("motor-compressor.campbell.json").await;
+    let b = &v["branches"][0];
+    assert_printed(num(&b["frequency"][0]), "30.02", "first torsional mode, Hz");
+    assert_printed(num(&b["log_decrement"][0]), "0.41", "its log decrement");
+    let margin = |mode: u64, kind: &str, order: f64, ratio: f64| {
+        let i = &v["interference"];
+        let e = i["excitations"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .position(|e| e["kind"] == kind && e["order"] == order && e["ratio"] == ratio)
+            .unwrap();
+        let c = i["criticals"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|c| c["mode"] == mode && c["excitation"] == e)
+            .unwrap();
+        100.0 * num(&c["margin"])
+    };
+    assert_printed(margin(1, "order", 1.0, 1.0), "20.1", "mode 1 over 1x, %");
+    assert_printed(margin(1, "line", 1.0, 0.0), "40.0", "mode 1 under f_L, %");
+    assert_printed(
+        num(&v["branches"][1]["frequency"][0]),
+        "291.05",
+        "mode 2, Hz",
+    );
+    assert_printed(
+        margin(2, "order", 2.0, 3.2),
+        "81.9",
+        "mode 2 over 2x pinion, %",
+    );
+
+    let s = run("motor-compressor-start.time-response.json").await;
+    let time = numbers(&s["time"]);
+    let rate = numbers(&s["rigid_motion"]["rate"]);
+    let synchronous = 1500.0 / whirl::model::speeds::RPM;
+    let k = rate
+        .iter()
+        .position(|w| *w >= synchronous * (1.0 - 1e-12))
+        .unwrap();
+    assert_printed(time[k], "2.23", "pull-in, s");
+    let shaft = &s["elements"][3];
+    assert_printed(
+        num(&shaft["peak"]),
+        "4600",
+        "motor shaft's peak torque, N m",
+    );
+    assert_printed(num(&shaft["peak_stress"]) / 1e6, "13.6", "its stress, MPa");
+    assert_printed(num(&shaft["peak_time"]), "1.45", "when, s");
+    let steady = numbers(&shaft["load"]).last().unwrap().abs();
+    assert_printed(steady, "2370", "steady torque, N m");
+    // The pulsation 2 f_L (1 - n) is the first mode's 30.0 Hz at n = 0.7.
+    let f1 = num(&b["frequency"][0]);
+    let k = rate
+        .iter()
+        .position(|w| 100.0 * (1.0 - w / synchronous) <= f1)
+        .unwrap();
+    assert_printed(time[k], "1.49", "the pulsation at the first mode, s");
+    assert_printed(100.0 * rate[k] / synchronous, "70", "at this speed, %");
+}
+
 /// The README and the pages of `docs/`, as files.
 fn pages() -> Vec<(String, String)> {
     let root = env!("CARGO_MANIFEST_DIR");

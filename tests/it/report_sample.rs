@@ -438,6 +438,7 @@ pub fn frequency_data() -> FrequencyResponseResponse {
         y_phase: vec![0.0; f.len()],
         forward: amp.iter().map(|a| a / 2.0).collect(),
         backward: amp.iter().map(|a| a / 2.0).collect(),
+        elements: vec![],
         frequencies: f,
         amplitude: amp,
         phase,
@@ -483,6 +484,7 @@ pub fn margins(
 pub fn report() -> ReportResponse {
     let l = level1_data();
     ReportResponse {
+        torsion: None,
         rotor: rotor(),
         operating_range: OperatingRange {
             min: 180.0,

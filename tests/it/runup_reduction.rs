@@ -72,6 +72,7 @@ fn run_up(full: &DampedModel, node: usize) -> (TimeSpec, f64) {
         tolerance: 1e-6,
         max_steps: 20_000_000,
         reduce: true,
+        generated: Default::default(),
     };
     (spec, top)
 }
@@ -120,6 +121,7 @@ fn reference(name: &str, model: &str, spec: &TimeSpec, top: f64) -> TimeResult {
         method: whirl::analysis::time::Method::Implicit,
         steps: v["steps"].as_u64().unwrap() as usize,
         states: v["states"].as_u64().unwrap() as usize,
+        train: None,
     }
 }
 
@@ -152,6 +154,7 @@ fn make_runup_references() {
             let tight = TimeSpec {
                 tolerance: 1e-8,
                 reduce: false,
+                generated: Default::default(),
                 ..spec
             };
             let f = time_response(&system, &full, &tight, true, &Control::default()).unwrap();

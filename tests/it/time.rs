@@ -56,6 +56,7 @@ fn spec(
         tolerance: 1e-6,
         max_steps: 5_000_000,
         reduce: false,
+        generated: Default::default(),
     }
 }
 

@@ -236,18 +236,7 @@ async fn a_harmonic_torques_steady_state_is_the_frequency_response() {
         .iter()
         .map(|x| x.as_f64().unwrap())
         .collect();
-    let (mut cc, mut ss, mut cs, mut xc, mut xs) = (0.0, 0.0, 0.0, 0.0, 0.0);
-    for (time, x) in times.iter().zip(&x).filter(|(time, _)| **time >= 0.6) {
-        let (c, s) = ((w * time).cos(), (w * time).sin());
-        cc += c * c;
-        ss += s * s;
-        cs += c * s;
-        xc += x * c;
-        xs += x * s;
-    }
-    let det = cc * ss - cs * cs;
-    let (a, b) = ((xc * ss - xs * cs) / det, (xs * cc - xc * cs) / det);
-    let got = a.hypot(b);
+    let got = crate::common::sine_amplitude(&times, &x, w, 0.6);
     let h = |input: usize| async move {
         ok(
             "/v1/frequency-response",

@@ -42,6 +42,9 @@ fn run_report(plan: &ReportPlan, control: &Control) -> Result<Outcome, RunError>
             parts.extend([next(), next(), next()]);
         }
     }
+    if let Some(t) = &plan.torsion {
+        parts.extend(t.tasks().iter().map(|_| next()));
+    }
     let (from, to) = share(cases_work(plan));
     let cases = control.part(from, to, || {
         report_cases(plan, &parts[1], &parts[2], control)

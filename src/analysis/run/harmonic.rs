@@ -7,9 +7,13 @@ use crate::analysis::AnalysisError;
 use crate::analysis::audit::peaks;
 use crate::analysis::control::Control;
 use crate::analysis::response;
+use crate::analysis::shaft_loads;
 use crate::analysis::time;
 use crate::analysis::unbalance::SteadyUnbalance;
+use crate::linalg::c64;
+use crate::model::rotor::Rotor;
 use crate::model::task::{FrequencyTask, UnbalanceTask};
+use rayon::prelude::*;
 
 impl Analysis for UnbalanceTask {
     fn run(&self, control: &Control) -> Result<Outcome, RunError> {
@@ -98,6 +102,11 @@ impl Analysis for FrequencyTask {
         let full = owned.full();
         let dof = |n: usize| time::translation(&system, n);
         let force = input.1.at(dof(input.0), system.n());
+        // A train's element loads need every node: its full model, which is small.
+        let train = match &model.rotor {
+            Rotor::Train(t) => Some(t),
+            _ => None,
+        };
         let (response, solved) = response::frequency_sweep(
             &system,
             &model.damping,
@@ -106,9 +115,24 @@ impl Analysis for FrequencyTask {
             &force,
             dof(*output),
             frequencies,
-            *reduce,
+            *reduce && train.is_none(),
             control,
         )?;
+        let elements = match train {
+            Some(t) => {
+                let at = solved.at(*speed);
+                let every: Vec<usize> = (0..system.n()).collect();
+                let x = frequencies
+                    .par_iter()
+                    .map(|&w| {
+                        let o = at.orbits(w, &force, &every)?;
+                        Ok(o.iter().map(|o| o.xy()[0]).collect())
+                    })
+                    .collect::<Result<Vec<Vec<c64>>, AnalysisError>>()?;
+                shaft_loads::responses(t, &x)
+            }
+            None => vec![],
+        };
         Ok(Outcome::Frequency {
             speed: *speed,
             input: *input,
@@ -118,6 +142,7 @@ impl Analysis for FrequencyTask {
             model: model.damping.name(),
             reduction: solved.reduction().cloned(),
             sparse: *sparse || system.frequency_dependent(),
+            elements,
         })
     }
 }

@@ -7,6 +7,7 @@ use crate::analysis::control::Control;
 use crate::analysis::time;
 use crate::damping::DampedModel;
 use crate::model::Invalid;
+use crate::model::rotor::Rotor;
 use crate::model::task::TimeTask;
 
 /// Why a large rotor's time response failed: it is integrated on a checked reduction only.
@@ -22,6 +23,24 @@ impl Analysis for TimeTask {
             sparse,
         } = self;
         let (system, fits) = super::time_fit::fitted(model, spec, !*sparse, control)?;
+        // A train on its modes apart from its rigid motion (dense: a train held sparse is
+        // integrated on a checked reduction, without the machines' torques).
+        let dense = !*sparse && !system.frequency_dependent();
+        if let (Rotor::Train(t), true) = (&model.rotor, dense) {
+            let r = super::time_train::solve(&system, t, model, spec, control)?;
+            return Ok(Outcome::Time(r, None, fits));
+        }
+        if !spec.generated.is_empty() {
+            let field = match spec.generated.motor {
+                Some(_) => "motor_start",
+                None => "short_circuit",
+            };
+            return Err(RunError::Invalid(Invalid::one(
+                field,
+                "a machine's torques are applied to a train solved on all its modes: this one \
+                 is too large (or has supports over whirl frequency); use fewer elements",
+            )));
+        }
         let reduced = time::reduced::solve_sparse(
             &system,
             &model.damping,

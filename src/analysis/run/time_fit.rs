@@ -144,6 +144,7 @@ mod tests {
             tolerance: 1e-6,
             max_steps: 1,
             reduce: false,
+            generated: Default::default(),
         };
         assert_eq!(speeds(&spec(5.0)), vec![0.0, 500.0, 800.0]);
         assert_eq!(speeds(&spec(2.5)), vec![0.0, 500.0, 650.0]);

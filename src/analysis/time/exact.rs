@@ -15,33 +15,7 @@ use crate::analysis::control::{Cancelled, Control};
 use crate::damping::state::StateModel;
 use crate::linalg::{self, CMat, c64};
 
-/// `(e^z - 1)/z`, accurate near 0.
-pub fn phi1(z: c64) -> c64 {
-    if z.norm() < 0.1 {
-        let (mut term, mut sum) = (c64::new(1.0, 0.0), c64::new(1.0, 0.0));
-        for k in 2..14 {
-            term = term * z / k as f64;
-            sum += term;
-        }
-        sum
-    } else {
-        (z.exp() - 1.0) / z
-    }
-}
-
-/// `(e^z - 1 - z)/z^2`, accurate near 0.
-pub fn phi2(z: c64) -> c64 {
-    if z.norm() < 0.1 {
-        let (mut term, mut sum) = (c64::new(0.5, 0.0), c64::new(0.5, 0.0));
-        for k in 3..16 {
-            term = term * z / k as f64;
-            sum += term;
-        }
-        sum
-    } else {
-        (phi1(z) - 1.0) / z
-    }
-}
+pub use crate::linalg::{phi1, phi2};
 
 pub fn solve(
     state: &StateModel,
@@ -108,6 +82,7 @@ pub fn solve(
         method: Method::Exact,
         steps: 0,
         states: size,
+        train: None,
     })
 }
 

@@ -257,7 +257,9 @@ pub fn solve(
     let columns = forcing.columns();
     let sp = &spec.speed;
     let (lo, hi) = sp.range(spec.duration);
-    let h_max = step_bound(spec.tolerance, lo.abs().max(hi.abs()));
+    // The loads turn at the spin speed (unbalances) or at a generated torque's frequency.
+    let fastest = lo.abs().max(hi.abs()).max(spec.generated.fastest());
+    let h_max = step_bound(spec.tolerance, fastest);
     let hard = hard_breaks(state, forcing, spec);
     // The grid the steps land on: every output time and every breakpoint.
     let mut grid: Vec<(f64, bool)> = times.iter().map(|&t| (t, false)).collect();
@@ -512,6 +514,7 @@ pub fn solve(
         method: Method::Exponential,
         steps,
         states: size,
+        train: None,
     })
 }
 

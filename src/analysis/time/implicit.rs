@@ -230,5 +230,6 @@ pub fn solve(
         method: Method::Implicit,
         steps,
         states: size,
+        train: None,
     })
 }

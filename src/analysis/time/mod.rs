@@ -44,6 +44,17 @@ pub struct TimeResult {
     pub method: Method,
     pub steps: usize,
     pub states: usize,
+    /// A torsional or axial response's rigid motion and element loads.
+    pub train: Option<Box<TrainHistory>>,
+}
+
+/// What a torsional or axial response adds: the rigid motion of a free train (the first
+/// node's position and rate at each output time) and each element's load history.
+#[derive(Debug, Clone, Default)]
+pub struct TrainHistory {
+    pub rigid: Option<(Vec<f64>, Vec<f64>)>,
+    pub elements: Vec<crate::analysis::shaft_loads::ElementHistory>,
+    pub warnings: Vec<String>,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -139,8 +150,10 @@ impl Coordinates<'_> {
 /// and an unbalance whirls the other way.
 pub struct Forcing<'a> {
     spec: &'a TimeSpec,
-    /// Shape of each force, then of each unbalance, in the solved coordinates.
+    /// Shape of each force, each generated torque, then of each unbalance, in the solved
+    /// coordinates.
     force_shapes: Vec<Vec<f64>>,
+    torque_shapes: Vec<Vec<f64>>,
     unbalance_shapes: Vec<Vec<f64>>,
     /// `M^-1`, `N x N`.
     m_inv: CMat,
@@ -159,6 +172,9 @@ impl<'a> Forcing<'a> {
         Ok(Forcing {
             spec,
             force_shapes: spec.forces.iter().map(|f| c.load(f.node)).collect(),
+            torque_shapes: (spec.generated.torques.iter())
+                .map(|t| c.load(t.node))
+                .collect(),
             unbalance_shapes: spec.unbalances.iter().map(|u| c.load(u.node)).collect(),
             m_inv: linalg::mass_solve(&r.mass, &identity)?,
             doubled: (r.layout == Layout::Doubled).then_some(c.solved.n()),
@@ -203,6 +219,9 @@ impl<'a> Forcing<'a> {
             };
             self.add_load(shape, c64::from_polar(v, force.direction), &mut f);
         }
+        for (torque, shape) in self.spec.generated.torques.iter().zip(&self.torque_shapes) {
+            self.add_load(shape, c64::new(torque.value(t, left), 0.0), &mut f);
+        }
         let sp = &self.spec.speed;
         for (u, shape) in self.spec.unbalances.iter().zip(&self.unbalance_shapes) {
             let on = if left { t > u.from } else { t >= u.from };
@@ -220,6 +239,13 @@ impl<'a> Forcing<'a> {
         let mut f = vec![c64::new(0.0, 0.0); self.m_inv.nrows()];
         let dir = c64::from_polar(1.0, self.spec.forces[k].direction);
         self.add_load(&self.force_shapes[k], dir, &mut f);
+        self.apply_m_inv(&f)
+    }
+
+    /// `B` of the unit generated torque `k`.
+    fn torque_column(&self, k: usize) -> Vec<c64> {
+        let mut f = vec![c64::new(0.0, 0.0); self.m_inv.nrows()];
+        self.add_load(&self.torque_shapes[k], c64::new(1.0, 0.0), &mut f);
         self.apply_m_inv(&f)
     }
 
@@ -245,11 +271,13 @@ impl<'a> Forcing<'a> {
     }
 
     /// The loads as fixed columns and coefficients, `b(t) = sum_j c_j(t) B_j`: the unit force
-    /// `k` in its direction, then each unbalance's whirls ([`Self::unbalance_columns`]).
+    /// `k` in its direction, the unit generated torques, then each unbalance's whirls
+    /// ([`Self::unbalance_columns`]).
     pub fn columns(&self) -> LoadColumns {
         let mut cols: Vec<Vec<c64>> = (0..self.spec.forces.len())
             .map(|k| self.force_column(k))
             .collect();
+        cols.extend((0..self.torque_shapes.len()).map(|k| self.torque_column(k)));
         let mut whirls = vec![];
         for u in 0..self.spec.unbalances.len() {
             for (col, sense) in self.unbalance_columns(u) {
@@ -269,6 +297,10 @@ impl<'a> Forcing<'a> {
                 force.history.value(t)
             };
             *ck = c64::new(v, 0.0);
+        }
+        let forces = self.spec.forces.len();
+        for (k, torque) in self.spec.generated.torques.iter().enumerate() {
+            c[forces + k] = c64::new(torque.value(t, left), 0.0);
         }
         let sp = &self.spec.speed;
         let (w, a, angle) = (sp.omega(t), sp.accel(t, left), sp.angle(t));
@@ -291,6 +323,13 @@ impl<'a> Forcing<'a> {
             t.extend(f.history.breakpoints());
         }
         t.extend(self.spec.unbalances.iter().map(|u| u.from));
+        t.extend(
+            self.spec
+                .generated
+                .torques
+                .iter()
+                .filter_map(|g| g.breakpoints()),
+        );
         if let SpeedLaw::Profile(p) = &self.spec.speed {
             t.extend(p.breakpoints());
         }
@@ -349,7 +388,9 @@ pub fn solve_in(
     };
     let forcing = Forcing::new(c, spec, state.size())?;
     let out: Vec<Vec<(usize, f64)>> = spec.nodes.iter().map(|&n| c.observe(n)).collect();
-    if let (Some(w), false) = (spec.speed.constant(), force_implicit) {
+    // Generated torques are not piecewise linear: stepped, not superposed.
+    let exact = !force_implicit && spec.generated.torques.is_empty();
+    if let (Some(w), true) = (spec.speed.constant(), exact) {
         match exact::solve(state, w, &forcing, spec, &out, control) {
             Ok(r) => return finite(r),
             Err(TimeError::Cancelled) => return Err(TimeError::Cancelled),

@@ -525,6 +525,9 @@ pub struct FrequencyResponseResponse {
     pub y_phase: Vec<f64>,
     pub forward: Vec<f64>,
     pub backward: Vec<f64>,
+    /// Torsional and axial responses: every element's torque (axial force) per unit input.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub elements: Vec<super::ElementLoadResponse>,
     pub model: String,
     /// The modal reduction the response was solved on; null when the full model was.
     #[serde(default)]

@@ -89,7 +89,8 @@ pub struct TimeResponseRequest {
     pub rotor: RotorInput,
     /// `viscous`, `equivalent` or `nonviscous` (hysteretic damping has no time-domain form).
     pub damping: DampingInput,
-    /// Constant spin speed, rad/s or `{value, unit}` (give this or `speed_profile`).
+    /// Constant spin speed, rad/s or `{value, unit}` (give this or `speed_profile`; a
+    /// torsional or axial response does not depend on it, and takes 0 without it).
     #[serde(default)]
     pub speed: Option<SpeedInput>,
     /// `[[t, Omega], ...]` (s, rad/s), or `{points: [[t, Omega], ...], unit}` with Omega in
@@ -127,6 +128,12 @@ pub struct TimeResponseRequest {
     /// axial displacement, m). Unbalances act laterally only.
     #[serde(default)]
     pub motion: super::Motion,
+    /// Torsional only: a synchronous motor's start-up (its air-gap and load torques).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub motor_start: Option<super::MotorStartInput>,
+    /// Torsional only: a generator's short circuit (its air-gap torque).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub short_circuit: Option<super::ShortCircuitInput>,
 }
 
 /// The response of one node.
@@ -147,8 +154,22 @@ pub struct TimeResponseResponse {
     /// sqrt(m/k), and the plots label them so, without physical units.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub nondimensional: bool,
+    /// The motion solved (as the request's `motion`).
+    #[serde(default)]
+    pub motion: super::Motion,
     pub time: Vec<f64>,
+    /// Each reported node's displacement; in torsion (axially) `x` is its twist, rad (axial
+    /// displacement, m), relative to the train's rigid motion where nothing holds the train
+    /// (`rigid_motion`), and `y` is 0.
     pub nodes: Vec<NodeHistory>,
+    /// A free train's rigid turning (axially: sliding) that the loads drive, beside its
+    /// vibration (torsional and axial responses; null where supports hold the train).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rigid_motion: Option<super::RigidMotion>,
+    /// Torsional and axial responses: every element's torque (axial force) over time, its
+    /// peak and the peak's stress.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub elements: Vec<super::ElementLoadHistory>,
     /// `exact` (constant speed: modal superposition, exact for piecewise-linear forces and
     /// unbalance), `exponential` (varying speed on a modal reduction: ETD-RK4, every pole
     /// integrated exactly) or `implicit` (TR-BDF2, L-stable, error-controlled).

@@ -14,6 +14,7 @@ mod report;
 mod service;
 mod shaft;
 mod studies;
+mod torque;
 mod train;
 mod units;
 
@@ -25,6 +26,7 @@ pub use report::*;
 pub use service::*;
 pub use shaft::*;
 pub use studies::*;
+pub use torque::*;
 pub use train::*;
 pub use units::*;
 
@@ -209,6 +211,12 @@ pub struct SegmentInput {
     /// `false`: the element has no gyroscopic moments (ROSS's `gyroscopic`). Default true.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub gyroscopic: Option<bool>,
+    /// Stress concentration factor of the segment's elements (>= 1, default 1: a keyway, a
+    /// shoulder's fillet): the shaft stresses of torsional and axial responses are multiplied
+    /// by it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schema(minimum = 1.0)]
+    pub stress_concentration: Option<f64>,
 }
 
 /// A rigid disk at a node.

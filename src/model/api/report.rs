@@ -55,6 +55,49 @@ pub struct ReportRequest {
     /// own checks; the verdict covers them all.
     #[serde(default)]
     pub cases: Option<Vec<BearingSetInput>>,
+    /// The train's torsional audit beside the lateral one: its natural frequencies against the
+    /// orders of its shafts' speeds and the line frequency (API 684's 10% separation over the
+    /// operating range), and a motor's start-up or a generator's short circuit with its peak
+    /// shaft torques.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub torsion: Option<TorsionInput>,
+}
+
+/// The report's torsional section.
+#[derive(Debug, Clone, Default, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct TorsionInput {
+    /// Orders of each shaft's speed that excite the train (default `[1, 2]`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub orders: Option<Vec<f64>>,
+    /// Electrical line frequency of the train's motor or generator: it and twice it excite it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub line_frequency: Option<SpeedInput>,
+    /// The transient's damping model (default: the report's, or `nonviscous`, its time-domain
+    /// form, where the report's is hysteretic).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub damping: Option<DampingInput>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub motor_start: Option<MotorStartInput>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub short_circuit: Option<ShortCircuitInput>,
+    /// Length of the transient, s (with `motor_start` or `short_circuit`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub duration: Option<f64>,
+    /// Its output interval, s (default `duration / 2000`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub output_interval: Option<f64>,
+}
+
+/// The report's torsional section.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+pub struct TorsionReport {
+    /// The torsional interference diagram over the report's speeds (under the report's damping
+    /// model), its crossings and margins from the operating range.
+    pub campbell: CampbellResponse,
+    /// The start-up or short-circuit transient: every element's torque and its peak.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub transient: Option<TimeResponseResponse>,
 }
 
 /// A set of bearings (and seals) the audit is repeated with.
@@ -236,6 +279,9 @@ pub struct ReportResponse {
     /// `checks` too, prefixed by the set's name.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub bearing_sets: Vec<BearingSetReport>,
+    /// The torsional section, when the request asks for it; its margins are in `checks`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub torsion: Option<TorsionReport>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub provenance: Option<Provenance>,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]

@@ -190,3 +190,35 @@ pub struct CouplingInput {
     #[schema(minimum = 0.0)]
     pub axial_damping: f64,
 }
+
+impl Interference {
+    /// 1.5 times the highest excitation frequency over the operating range, in the answer's
+    /// unit: a mode above it is more than 50% from every excitation, out of their reach.
+    pub fn reach(&self) -> f64 {
+        let top = self
+            .excitations
+            .iter()
+            .map(|e| e.frequency.unwrap_or(e.slope * self.operating_range[1]))
+            .fold(0.0, f64::max);
+        1.5 * top
+    }
+
+    /// The label of excitation `e`: `2x`, `1x of the 3.2x shaft` (a shaft turning 3.2 times as
+    /// fast), `f_L`, `2 f_L`.
+    pub fn label(&self, e: usize) -> String {
+        let x = &self.excitations[e];
+        let k = plain(x.order);
+        match x.kind.as_str() {
+            "line" if x.order == 1.0 => "f_L".into(),
+            "line" => format!("{k} f_L"),
+            _ if x.ratio == 1.0 => format!("{k}x"),
+            _ => format!("{k}x of the {}x shaft", plain(x.ratio)),
+        }
+    }
+}
+
+/// `2`, `3.2`, `0.333`: a number without trailing zeros.
+pub fn plain(v: f64) -> String {
+    let s = format!("{v:.3}");
+    s.trim_end_matches('0').trim_end_matches('.').to_string()
+}

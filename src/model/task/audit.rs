@@ -504,6 +504,13 @@ impl FrequencyResponseRequest {
         let frequencies = freqs.expect("validated");
         let size = model.size();
         let count = frequencies.len() as u64;
+        // A train's answer carries each element's amplitude, phase and stress per frequency.
+        let elements = if self.motion.is_lateral() {
+            0
+        } else {
+            nodes.saturating_sub(1) as u64
+        };
+        let values = count * (10 + 3 * elements) + 16;
         let s = size.states() as u64;
         let threads = limits.threads.max(1) as u64;
         let extra = threads * 3 * 16 * s * s + count * 64;
@@ -530,9 +537,8 @@ impl FrequencyResponseRequest {
                 sparse,
             }),
             cost: match sparse {
-                true => sparse_harmonic_cost(size, limits, count, count * 10 + 16)
-                    .plus_bytes(damper_bytes),
-                false => Cost::new(size, 0, 0, extra, count * 10 + 16).with_work(work),
+                true => sparse_harmonic_cost(size, limits, count, values).plus_bytes(damper_bytes),
+                false => Cost::new(size, 0, 0, extra, values).with_work(work),
             },
         }
         .bounded(limits, "frequencies")

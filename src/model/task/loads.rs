@@ -3,6 +3,8 @@
 
 use super::*;
 use super::{TimeTask, UnbalanceTask};
+use crate::model::loads::{Generated, Source, Torque};
+use crate::model::torque::{MotorStart, ShortCircuit};
 
 /// A node of a rotor with `nodes` nodes, or the error at `at`.
 pub(super) fn node_index(bad: &mut Invalid, at: String, k: i64, nodes: usize) -> Option<usize> {
@@ -61,6 +63,8 @@ impl TimeResponseRequest {
                 bad.push("speed", "give `speed` or `speed_profile`, not both");
                 None
             }
+            // Torsion and axial motion do not depend on the speed.
+            (None, None) if !self.motion.is_lateral() => Some(SpeedLaw::Constant(0.0)),
             (None, None) => {
                 bad.push("speed", "give `speed` (constant) or `speed_profile`");
                 None
@@ -89,7 +93,13 @@ impl TimeResponseRequest {
         let mut bad = Invalid::default();
         let nodes = model.rotor.node_count();
         let node = |bad: &mut Invalid, at: String, k: i64| node_index(bad, at, k, nodes);
-        let reported = requested_nodes.unwrap_or(nodes).max(1);
+        // A torsional or axial response also reports every element's load.
+        let elements = if self.motion.is_lateral() {
+            0
+        } else {
+            nodes.saturating_sub(1)
+        };
+        let reported = requested_nodes.unwrap_or(nodes).max(1) + elements;
         let samples = samples.expect("validated");
         if samples.saturating_mul(reported) > limits.max_samples {
             // A count beyond any limit is shown as the ratio it comes from, not as a
@@ -154,6 +164,20 @@ impl TimeResponseRequest {
                 });
             }
         }
+        let generated = self.generated(&mut bad, nodes);
+        if sparse && !generated.is_empty() {
+            let field = match generated.motor {
+                Some(_) => "motor_start",
+                None => "short_circuit",
+            };
+            bad.push(
+                field,
+                format!(
+                    "a machine's torques are applied to a train solved on all its modes: this \
+                     one, {nodes} nodes, is past the dense limits; use fewer elements"
+                ),
+            );
+        }
         let out = report_nodes(&mut bad, &self.nodes, nodes);
         if !bad.is_empty() {
             return Err(bad);
@@ -168,20 +192,32 @@ impl TimeResponseRequest {
             tolerance: tolerance.expect("validated"),
             max_steps: limits.max_steps,
             reduce,
+            generated,
         };
         // The step count before any work: a fast run-up is refused here, not after minutes of
         // integration at the step limit.
         let fewest = spec.fewest_steps();
         if fewest > limits.max_steps as f64 {
-            let field = if self.speed_profile.is_some() {
+            let field = if !spec.generated.is_empty() {
+                if self.motor_start.is_some() {
+                    "motor_start"
+                } else {
+                    "short_circuit"
+                }
+            } else if self.speed_profile.is_some() {
                 "speed_profile"
             } else {
                 "speed"
             };
+            let what = if spec.generated.is_empty() {
+                "the unbalances turn"
+            } else {
+                "the generated torques turn"
+            };
             bad.push(
                 field,
                 format!(
-                    "the unbalances turn through {:.3e} rad in this run: at least {:.3e} \
+                    "{what} through {:.3e} rad in this run: at least {:.3e} \
                      integration steps ({} rad a step at tolerance {:e}), more than the limit \
                      of {} (WHIRL_MAX_STEPS); use a slower speed profile, a shorter duration \
                      or a looser tolerance",
@@ -203,7 +239,7 @@ impl TimeResponseRequest {
         let extra = samples as u64 * reported as u64 * 16
             + 16 * s * (loads + reported as u64 + 16)
             + 16 * n * n;
-        let steps = if spec.speed.constant().is_some() {
+        let steps = if spec.speed.constant().is_some() && spec.generated.is_empty() {
             0.0
         } else {
             (samples as f64).max(1e4).max(fewest)
@@ -233,6 +269,38 @@ impl TimeResponseRequest {
             cost,
         }
         .bounded(limits, "output_interval")
+    }
+}
+
+impl TimeResponseRequest {
+    /// The torques electrical machines generate: torsional responses only.
+    fn generated(&self, bad: &mut Invalid, nodes: usize) -> Generated {
+        let mut out = Generated::default();
+        let mut node = |bad: &mut Invalid, at: String, k: i64| node_index(bad, at, k, nodes);
+        let torsional = self.motion == Motion::Torsional;
+        if let Some(m) = &self.motor_start {
+            if torsional {
+                out.motor = MotorStart::parse(m, "motor_start", bad, &mut node);
+            } else {
+                bad.push(
+                    "motor_start",
+                    "a motor's start-up needs `motion: torsional`",
+                );
+            }
+        }
+        if let Some(s) = &self.short_circuit {
+            if torsional {
+                if let Some(s) = ShortCircuit::parse(s, "short_circuit", bad, &mut node) {
+                    out.torques.push(Torque {
+                        node: s.node,
+                        source: Source::Fault(std::sync::Arc::new(s)),
+                    });
+                }
+            } else {
+                bad.push("short_circuit", "a short circuit needs `motion: torsional`");
+            }
+        }
+        out
     }
 }
 

@@ -29,12 +29,14 @@ mod cost;
 mod held;
 mod loads;
 mod report;
+mod report_torsion;
 mod whirl;
 
 pub use audit::STANDARD_GRAVITY;
 pub use cost::sparse_states;
 use cost::{SPARSE_WORK, sparse_harmonic_cost, sparse_sweep_cost, sparse_time_cost, sweep_cost};
 pub use report::{MAX_CASES, ModelPlan, ReportPlan, SWEEP_OVER_MCS};
+pub use report_torsion::TorsionPlan;
 
 /// A validated rotor and damping model.
 #[derive(Debug, Clone)]

@@ -34,6 +34,8 @@ pub struct ReportPlan {
     pub input_sha256: String,
     /// The same audit on each bearing set: its name and plan.
     pub sets: Vec<(String, ReportPlan)>,
+    /// The torsional section (the report's own, not a bearing set's).
+    pub torsion: Option<super::TorsionPlan>,
 }
 
 impl ReportPlan {
@@ -43,6 +45,7 @@ impl ReportPlan {
         for m in &self.models {
             all.extend([&m.campbell, &m.level1, &m.unbalance]);
         }
+        all.extend(self.torsion.iter().flat_map(|t| t.tasks()));
         all
     }
 
@@ -57,6 +60,7 @@ impl ReportPlan {
                 all.extend([&m.campbell, &m.level1, &m.unbalance]);
             }
         }
+        all.extend(self.torsion.iter().flat_map(|t| t.tasks()));
         all
     }
 }
@@ -266,6 +270,10 @@ impl ReportRequest {
             clearances,
             input_sha256: sha256_hex(&serde_json::to_vec(self).unwrap_or_default()),
             sets: vec![],
+            torsion: match &self.torsion {
+                Some(t) => Some(self.torsion_plan(t, &speeds, (lo, hi), limits)?),
+                None => None,
+            },
         };
         let mut cost = combined(&plan.run_tasks());
         let mut plan = plan;
@@ -324,6 +332,7 @@ impl ReportRequest {
         let sub = ReportRequest {
             rotor,
             cases: None,
+            torsion: None,
             ..self.clone()
         };
         let task = sub.parse(limits).map_err(|mut e| {

@@ -6,31 +6,12 @@
 use super::campbell::{LEFT, RED, RIGHT, W, band};
 use super::svg::{Anchor, Axis, INK, Stroke, Svg, extent, spread};
 use super::{COLOURS, Err, RPM, clip, runs};
-use crate::model::api::{CampbellResponse, Interference, Motion};
+use crate::model::api::{CampbellResponse, Motion};
 
 const LINE: &str = "#555555";
 
 fn colour(mode: usize) -> &'static str {
     COLOURS[(mode.max(1) - 1) % COLOURS.len()]
-}
-
-/// The label of excitation `e`: `2x`, `1x @3.2` (a shaft turning 3.2 times as fast), `f_L`,
-/// `2 f_L`.
-fn label(i: &Interference, e: usize) -> String {
-    let x = &i.excitations[e];
-    let k = plain(x.order);
-    match x.kind.as_str() {
-        "line" if x.order == 1.0 => "f_L".into(),
-        "line" => format!("{k} f_L"),
-        _ if x.ratio == 1.0 => format!("{k}x"),
-        _ => format!("{k}x of the {}x shaft", plain(x.ratio)),
-    }
-}
-
-/// `2`, `3.2`, `0.333`: a number without trailing zeros.
-fn plain(v: f64) -> String {
-    let s = format!("{v:.3}");
-    s.trim_end_matches('0').trim_end_matches('.').to_string()
 }
 
 /// The interference diagram of a torsional or axial sweep (its answer in rad/s).
@@ -80,7 +61,7 @@ pub fn interference(c: &CampbellResponse) -> Result<String, Err> {
         svg.path(&top, &pts, Stroke::dashed(LINE, 1.2, dash), "excitation");
         let end = pts[1];
         if top.contains(end) || end.1 <= f_hi {
-            tags.push((top.px(end), label(i, e)));
+            tags.push((top.px(end), i.label(e)));
         }
     }
     // At the right edge, spread apart; elsewhere (a line leaving through the top) beside it.
@@ -156,7 +137,7 @@ pub fn interference(c: &CampbellResponse) -> Result<String, Err> {
         let s = format!(
             "mode {m}: {} — closest: {}{}, margin {:.1}%",
             svg.frequency_label(worst.frequency),
-            label(i, worst.excitation),
+            i.label(worst.excitation),
             worst
                 .speed
                 .map_or(String::new(), |w| format!(", crossing at {w:.1} rad/s")),

@@ -2,20 +2,15 @@
 //! and the unbalance response as a Bode plot (amplitude over phase against speed).
 
 use super::svg::{Anchor, Axis, INK, Panel, Stroke, Svg, extent, length_unit, spread, text_width};
-use super::{COLOURS, Err, RPM};
+use super::{COLOURS, Err, RPM, stride};
 use crate::model::api::{TimeResponseResponse, UnbalanceResponseResponse};
-
-/// At most this many points per line (evenly strided; more do not show at this size).
-const MAX_POINTS: usize = 6000;
-
-fn stride<T: Copy>(v: &[T]) -> impl Iterator<Item = T> + '_ {
-    let step = v.len().div_ceil(MAX_POINTS).max(1);
-    v.iter().copied().step_by(step)
-}
 
 /// Whirl amplitude `|x + i y|` of each node against time (left) and the orbits, y against x
 /// at equal scales (right).
 pub fn time(r: &TimeResponseResponse) -> Result<String, Err> {
+    if !r.elements.is_empty() {
+        return super::shaft_loads::time(r);
+    }
     let mut svg = Svg::new(1200, 560).nondimensional(r.nondimensional);
     let amps: Vec<Vec<f64>> = r
         .nodes
