@@ -548,7 +548,7 @@ async fn seal_over_frequency_run_up() {
 /// docs/trains.md on the direct-drive train's report: "Its modes at 31.07 and 80.61 Hz lie 37.9%
 /// below the motor's 1x and 19.4% below 2x and 2 f_L; every check of the report passes".
 #[tokio::test]
-#[ignore = "heavy: a four-model report of a 20-element train (cargo test --release -- --ignored)"]
+#[ignore = "heavy: a report of a 20-element train, run once in the fast tier by http.rs (cargo test --release -- --ignored)"]
 async fn train_torsion_report() {
     let r = run("train-torsion.report.json").await;
     let checks = r["checks"].as_array().unwrap();
