@@ -36,12 +36,7 @@ fn separation_checks(c: &api::CampbellResponse, i: &Interference, model: &str) -
     let hz = |f: f64| i.unit.to_rad_s(f) / std::f64::consts::TAU;
     let mut out = vec![];
     for b in &c.branches {
-        let nearest = i
-            .criticals
-            .iter()
-            .filter(|k| k.mode == b.mode)
-            .min_by(|a, b| a.margin.total_cmp(&b.margin));
-        let Some(k) = nearest else { continue };
+        let Some(k) = i.nearest(b.mode) else { continue };
         if k.frequency > i.reach() {
             continue;
         }

@@ -4,6 +4,7 @@
 use super::models::{assemble, harmonic_model};
 use super::{Analysis, Outcome, RunError};
 use crate::analysis::AnalysisError;
+use crate::analysis::audit::frequency::Orbit;
 use crate::analysis::audit::peaks;
 use crate::analysis::control::Control;
 use crate::analysis::response;
@@ -102,36 +103,43 @@ impl Analysis for FrequencyTask {
         let full = owned.full();
         let dof = |n: usize| time::translation(&system, n);
         let force = input.1.at(dof(input.0), system.n());
-        // A train's element loads need every node: its full model, which is small.
-        let train = match &model.rotor {
-            Rotor::Train(t) => Some(t),
-            _ => None,
-        };
-        let (response, solved) = response::frequency_sweep(
-            &system,
-            &model.damping,
-            full,
-            *speed,
-            &force,
-            dof(*output),
-            frequencies,
-            *reduce && train.is_none(),
-            control,
-        )?;
-        let elements = match train {
-            Some(t) => {
-                let at = solved.at(*speed);
+        // A train's element loads need every node: its full model (small), each frequency
+        // solved once for all of them, the output among them.
+        let (response, reduction, elements) = match &model.rotor {
+            Rotor::Train(t) => {
+                let held = response::Responses::full(&system, full);
+                let at = held.at(*speed);
                 let every: Vec<usize> = (0..system.n()).collect();
-                let x = frequencies
+                control.expect(frequencies.len() as u64);
+                let orbits = frequencies
                     .par_iter()
                     .map(|&w| {
+                        control.check()?;
                         let o = at.orbits(w, &force, &every)?;
-                        Ok(o.iter().map(|o| o.xy()[0]).collect())
+                        control.advance(1);
+                        Ok(o)
                     })
-                    .collect::<Result<Vec<Vec<c64>>, AnalysisError>>()?;
-                shaft_loads::responses(t, &x)
+                    .collect::<Result<Vec<Vec<Orbit>>, AnalysisError>>()?;
+                let x: Vec<Vec<c64>> = (orbits.iter())
+                    .map(|o| o.iter().map(|o| o.xy()[0]).collect())
+                    .collect();
+                let response = orbits.iter().map(|o| o[dof(*output)]).collect();
+                (response, None, shaft_loads::responses(t, &x))
             }
-            None => vec![],
+            _ => {
+                let (response, solved) = response::frequency_sweep(
+                    &system,
+                    &model.damping,
+                    full,
+                    *speed,
+                    &force,
+                    dof(*output),
+                    frequencies,
+                    *reduce,
+                    control,
+                )?;
+                (response, solved.reduction().cloned(), vec![])
+            }
         };
         Ok(Outcome::Frequency {
             speed: *speed,
@@ -140,7 +148,7 @@ impl Analysis for FrequencyTask {
             frequencies: frequencies.clone(),
             response,
             model: model.damping.name(),
-            reduction: solved.reduction().cloned(),
+            reduction,
             sparse: *sparse || system.frequency_dependent(),
             elements,
         })

@@ -27,7 +27,6 @@ use crate::analysis::shaft_loads;
 use crate::analysis::time::{self, Coordinates, TimeResult, TimeSpec, TrainHistory};
 use crate::damping::DampedModel;
 use crate::fem::modal::ModalBasis;
-use crate::linalg::RMat;
 use crate::model::Invalid;
 use crate::model::loads::{Source, SpeedLaw, Torque};
 use crate::model::task::Model;
@@ -89,10 +88,11 @@ pub fn solve(
         ]);
         run_up = Some((up, rm));
     }
-    let keep: Vec<usize> = (0..basis.len()).filter(|k| !rigid.contains(k)).collect();
+    // The rigid mode is the lowest (the basis is ascending): the elastic ones are the rest.
+    let from = rigid.len();
     let elastic = ModalBasis {
-        omega: keep.iter().map(|&k| basis.omega[k]).collect(),
-        phi: RMat::from_fn(system.n(), keep.len(), |i, j| basis.phi[(i, keep[j])]),
+        omega: basis.omega[from..].to_vec(),
+        phi: basis.phi.subcols(from, basis.len() - from).to_owned(),
     };
     let reduced = elastic.reduce(system);
     let damped =
@@ -140,19 +140,27 @@ fn rigid_history(
     dof: &dyn Fn(usize) -> usize,
 ) -> (Vec<f64>, Vec<f64>) {
     let r0 = r[dof(0)];
+    // Each force as steps and ramps, weighted by the rigid mode at its node: once, not per time.
+    let pieces: Vec<(f64, f64, f64)> = spec
+        .forces
+        .iter()
+        .flat_map(|f| {
+            let w = r[dof(f.node)];
+            let sr = f.history.steps_and_ramps();
+            sr.into_iter()
+                .map(move |(tk, jump, ramp)| (tk, w * jump, w * ramp))
+        })
+        .collect();
     times
         .iter()
         .map(|&t| {
             // (eta', eta).
             let (mut v, mut p) = (0.0, 0.0);
-            for f in &spec.forces {
-                let w = r[dof(f.node)];
-                for (tk, jump, ramp) in f.history.steps_and_ramps() {
-                    let tau = t - tk;
-                    if tau > 0.0 {
-                        v += w * (jump * tau + ramp * tau * tau / 2.0);
-                        p += w * (jump * tau * tau / 2.0 + ramp * tau.powi(3) / 6.0);
-                    }
+            for &(tk, jump, ramp) in &pieces {
+                let tau = t - tk;
+                if tau > 0.0 {
+                    v += jump * tau + ramp * tau * tau / 2.0;
+                    p += jump * tau * tau / 2.0 + ramp * tau.powi(3) / 6.0;
                 }
             }
             for g in &spec.generated.torques {

@@ -236,16 +236,14 @@ impl<'a> Forcing<'a> {
 
     /// `B` of the unit force `k` in its direction (both rows when doubled).
     pub fn force_column(&self, k: usize) -> Vec<c64> {
-        let mut f = vec![c64::new(0.0, 0.0); self.m_inv.nrows()];
         let dir = c64::from_polar(1.0, self.spec.forces[k].direction);
-        self.add_load(&self.force_shapes[k], dir, &mut f);
-        self.apply_m_inv(&f)
+        self.unit_column(&self.force_shapes[k], dir)
     }
 
-    /// `B` of the unit generated torque `k`.
-    fn torque_column(&self, k: usize) -> Vec<c64> {
+    /// `M^-1` of a unit load `value` on `shape`.
+    fn unit_column(&self, shape: &[f64], value: c64) -> Vec<c64> {
         let mut f = vec![c64::new(0.0, 0.0); self.m_inv.nrows()];
-        self.add_load(&self.torque_shapes[k], c64::new(1.0, 0.0), &mut f);
+        self.add_load(shape, value, &mut f);
         self.apply_m_inv(&f)
     }
 
@@ -277,7 +275,8 @@ impl<'a> Forcing<'a> {
         let mut cols: Vec<Vec<c64>> = (0..self.spec.forces.len())
             .map(|k| self.force_column(k))
             .collect();
-        cols.extend((0..self.torque_shapes.len()).map(|k| self.torque_column(k)));
+        let one = c64::new(1.0, 0.0);
+        cols.extend(self.torque_shapes.iter().map(|s| self.unit_column(s, one)));
         let mut whirls = vec![];
         for u in 0..self.spec.unbalances.len() {
             for (col, sense) in self.unbalance_columns(u) {

@@ -192,6 +192,14 @@ pub struct CouplingInput {
 }
 
 impl Interference {
+    /// Mode `mode`'s crossing of least margin: its nearest excitation.
+    pub fn nearest(&self, mode: usize) -> Option<&InterferenceCritical> {
+        self.criticals
+            .iter()
+            .filter(|k| k.mode == mode)
+            .min_by(|a, b| a.margin.total_cmp(&b.margin))
+    }
+
     /// 1.5 times the highest excitation frequency over the operating range, in the answer's
     /// unit: a mode above it is more than 50% from every excitation, out of their reach.
     pub fn reach(&self) -> f64 {

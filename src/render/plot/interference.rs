@@ -128,12 +128,7 @@ pub fn interference(c: &CampbellResponse) -> Result<String, Err> {
     modes.sort_unstable();
     modes.dedup();
     for m in modes.iter().take(12) {
-        let worst = i
-            .criticals
-            .iter()
-            .filter(|c| c.mode == *m)
-            .min_by(|a, b| a.margin.total_cmp(&b.margin))
-            .expect("a mode with a crossing");
+        let worst = i.nearest(*m).expect("a mode with a crossing");
         let s = format!(
             "mode {m}: {} — closest: {}{}, margin {:.1}%",
             svg.frequency_label(worst.frequency),

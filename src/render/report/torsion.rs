@@ -20,11 +20,7 @@ pub(super) fn torsion_section(o: &mut String, report: &ReportResponse) -> Result
             .filter_map(|b| {
                 let f = b.frequency.iter().flatten().next()?;
                 let logdec = b.log_decrement.iter().flatten().next().copied();
-                let nearest = i
-                    .criticals
-                    .iter()
-                    .filter(|k| k.mode == b.mode)
-                    .min_by(|a, b| a.margin.total_cmp(&b.margin))?;
+                let nearest = i.nearest(b.mode)?;
                 if nearest.frequency > i.reach() {
                     return None;
                 }
